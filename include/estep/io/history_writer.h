@@ -1,0 +1,36 @@
+#ifndef estep_io_history_writer_h
+#define estep_io_history_writer_h
+
+#include <estep/time_integration/time_loop.h>
+
+#include <fstream>
+#include <string>
+
+namespace estep
+{
+  /**
+   * Writes history.csv: one row per output time with the time, the energies
+   * (kinetic, potential, terraced potential, total T + V and terraced total T +
+   * L h), the linear and angular momentum about the origin, the step statistics
+   * so far, and the system's own observables. Rows are flushed as they are
+   * written, so a run that stops early leaves a valid file.
+   */
+  class HistoryWriter : public RunObserver
+  {
+  public:
+    /** Opens @p filename and writes the header; @p integrator must be
+     * initialised. Throws std::runtime_error if it cannot. */
+    HistoryWriter(const std::string    &filename,
+                  const TimeIntegrator &integrator);
+
+    void
+    observe(const Snapshot &snapshot) override;
+
+  private:
+    const TimeIntegrator &integrator;
+    const double          start_time;
+    std::ofstream         out;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,30 @@
+#ifndef estep_io_trajectory_norm_h
+#define estep_io_trajectory_norm_h
+
+#include <estep/time_integration/time_loop.h>
+
+namespace estep
+{
+  /**
+   * Accumulates the H1 norm of the trajectory over the run,
+   * ||q||_H1(0,T) = ( integral |q(t)|^2 + |q'(t)|^2 dt )^(1/2),
+   * step by step with three-point Gauss quadrature on the integrator's dense
+   * output: exact for energy-stepping (q linear, q' constant on each step),
+   * fifth order for the cubic Hermite output of Newmark.
+   */
+  class TrajectoryNorm : public RunObserver
+  {
+  public:
+    void
+    after_step(const TimeIntegrator &integrator) override;
+
+    /** The H1 norm accumulated so far. */
+    double
+    h1_norm() const;
+
+  private:
+    double integral = 0.;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,119 @@
+#ifndef estep_systems_mechanical_system_h
+#define estep_systems_mechanical_system_h
+
+#include <deal.II/lac/vector.h>
+
+#include <estep/systems/free_flight.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  /** The vector type of configurations, velocities and gradients. */
+  using Vector = dealii::Vector<double>;
+
+  /**
+   * A constraint hit along a free flight (an energy step of infinite height).
+   */
+  struct ConstraintEvent
+  {
+    /** Flight parameter (time since the start of the flight) of the first
+     * contact. */
+    double s;
+    /** Gradient of the constraint function at the contact point: the reflection
+     * direction. */
+    Vector normal;
+  };
+
+  /**
+   * A Lagrangian system L = 1/2 v^T M v - V(q) with a constant diagonal
+   * (lumped) mass matrix M: the one interface that every time integrator meets.
+   * An integrator never sees a mesh.
+   *
+   * Conventions:
+   * - the coordinates q are point positions stored point by point: component c
+   * of point i is q[spatial_dimension() * i + c]. Linear and angular momentum
+   * are computed from this layout (see compute_momenta());
+   * - energies are relative to a reference state where that is natural (the
+   * undeformed body);
+   * - V(q) = +infinity marks an inadmissible configuration (an inverted
+   * element).
+   */
+  class MechanicalSystem
+  {
+  public:
+    virtual ~MechanicalSystem() = default;
+
+    /** A short name for output. */
+    virtual std::string
+    name() const = 0;
+
+    /** Dimension of the space the points live in (2 or 3). */
+    virtual unsigned int
+    spatial_dimension() const = 0;
+
+    /** Number of generalized coordinates. */
+    virtual unsigned int
+    n_dofs() const = 0;
+
+    /** The diagonal of M^-1 (the lumped inverse mass), one entry per
+     * coordinate. */
+    virtual const Vector &
+    inverse_mass() const = 0;
+
+    /** V(q); +infinity if q is inadmissible. */
+    virtual double
+    energy(const Vector &q) const = 0;
+
+    /** g = grad V(q). q must be admissible. */
+    virtual void
+    gradient(const Vector &q, Vector &g) const = 0;
+
+    /** The restriction of V to the line q + s v, s >= 0 (see FreeFlight). */
+    virtual std::unique_ptr<FreeFlight>
+    free_flight(const Vector &q, const Vector &v) const = 0;
+
+    /**
+     * The first constraint event on the flight q + s v with 0 < s <= s_max, if
+     * the system has constraints (infinite energy steps, e.g. impenetrability)
+     * and one is hit. The default has no constraints.
+     */
+    virtual std::optional<ConstraintEvent>
+    first_constraint_event(const Vector &q,
+                           const Vector &v,
+                           const double  s_max) const;
+
+    /** Names of extra per-state quantities written to the history (e.g. a
+     * tracked point). */
+    virtual std::vector<std::string>
+    observable_names() const;
+
+    /** Values of the quantities named by observable_names() at state (q, v). */
+    virtual std::vector<double>
+    observables(const Vector &q, const Vector &v) const;
+  };
+
+  /** Linear and angular momentum of a state. In 2D only the z components are
+   * meaningful. */
+  struct Momenta
+  {
+    double linear[3]  = {0., 0., 0.};
+    double angular[3] = {0., 0., 0.};
+  };
+
+  /** Momenta of (q, v) from the point layout and lumped mass of @p system
+   * (about the origin). */
+  Momenta
+  compute_momenta(const MechanicalSystem &system,
+                  const Vector           &q,
+                  const Vector           &v);
+
+  /** Kinetic energy 1/2 v^T M v with the lumped mass of @p system. */
+  double
+  kinetic_energy(const MechanicalSystem &system, const Vector &v);
+} // namespace estep
+
+#endif

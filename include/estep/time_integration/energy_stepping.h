@@ -1,0 +1,103 @@
+#ifndef estep_time_integration_energy_stepping_h
+#define estep_time_integration_energy_stepping_h
+
+#include <estep/time_integration/first_crossing_search.h>
+#include <estep/time_integration/time_integrator.h>
+
+namespace estep
+{
+  /**
+   * Energy-stepping (Gonzalez, Schmidt and Ortiz, 2010): the exact motion of
+   * the terraced potential V_h(q) = h floor(V(q) / h).
+   *
+   * Between events the motion is free flight, q(t) = q_k + (t - t_k) v_k. The
+   * next event is the first level crossing found by find_first_crossing()
+   * (certified: no crossing is missed) or the first constraint event of the
+   * system, whichever comes first. At a level crossing q*, with n = grad V(q*),
+   * a = n . v and m = n^T M^-1 n:
+   * - climbing by dV = +h when a^2 >= 2 h m: v += lambda M^-1 n with
+   *   lambda = (-a + sqrt(a^2 - 2 h m)) / m, and L += 1;
+   * - otherwise reflecting: lambda = -2 a / m, L unchanged;
+   * - descending by dV = -h: lambda = (-a - sqrt(a^2 + 2 h m)) / m, and L -= 1.
+   * At a constraint event the velocity reflects on the constraint normal. The
+   * terrace index L is an integer carried from event to event, never recomputed
+   * from V.
+   *
+   * Exactly conserved, up to round-off: E_h = 1/2 v^T M v + L h, and the linear
+   * and angular momenta of systems whose V is invariant under translations and
+   * rotations.
+   */
+  class EnergyStepping : public TimeIntegrator
+  {
+  public:
+    /**
+     * @param energy_step The energy step h > 0 (energy units of the system).
+     */
+    EnergyStepping(const MechanicalSystem &system, const double energy_step);
+
+    std::string
+    name() const override;
+
+    /** Set the state; the terrace index becomes floor(V(q0) / h) once, here. */
+    void
+    initialize(const double t0, const Vector &q0, const Vector &v0) override;
+
+    /** Free flight to the next event and the momentum jump there, or free
+     * flight to t_limit if no event comes before it. */
+    void
+    step(const double t_limit) override;
+
+    /** Exact: free-flight interpolation on the last flight. */
+    Snapshot
+    dense_output(const double t) const override;
+
+    std::vector<Counter>
+    counters() const override;
+
+    /** The current terrace index L (L h <= V < (L+1) h up to the root
+     * tolerance). */
+    long long
+    terrace_index() const
+    {
+      return level;
+    }
+
+    /** The energy step h. */
+    double
+    energy_step() const
+    {
+      return h;
+    }
+
+    /** E_h = T + L h, the exactly conserved energy. */
+    double
+    terraced_energy() const;
+
+  private:
+    /** Apply the momentum jump at the current point for a crossing in @p
+     * direction. */
+    void
+    jump_at_level(const int direction);
+
+    /** Reflect the velocity on a constraint @p normal. */
+    void
+    reflect(const Vector &normal);
+
+    const double h;
+    long long    level       = 0;
+    Departure    departure   = Departure::interior;
+    double       last_flight = 0.;
+
+    // The last flight: it started at (t_previous, q_start) with velocity
+    // v_flight on level level_flight.
+    Vector    q_start, v_flight;
+    long long level_flight = 0;
+
+    mutable Vector   gradient_buffer;
+    SearchStatistics search_statistics;
+    std::uint64_t    n_climbs = 0, n_descents = 0, n_reflections = 0,
+                  n_constraint_events = 0, n_gradients = 0;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,91 @@
+#ifndef estep_time_integration_first_crossing_search_h
+#define estep_time_integration_first_crossing_search_h
+
+#include <estep/systems/free_flight.h>
+
+#include <cstdint>
+
+namespace estep
+{
+  /**
+   * Where a free flight starts relative to the two levels of its terrace.
+   */
+  enum class Departure
+  {
+    /** Strictly inside the terrace (start of a run). */
+    interior,
+    /** On the lower level L h, moving up into the terrace (after a climb). */
+    from_lower_level,
+    /** On the upper level (L+1) h, moving down into the terrace (after a
+     * descent or a reflection). */
+    from_upper_level
+  };
+
+  /**
+   * The question the first-crossing search answers: along f(s) = V(q + s v), 0
+   * < s <= horizon, when does f first reach @p lower_level or @p upper_level?
+   */
+  struct CrossingQuery
+  {
+    double    lower_level;
+    double    upper_level;
+    Departure departure;
+    /** The search looks at (0, horizon] only. */
+    double horizon;
+    /** Length of the first search window (e.g. the previous step); windows then
+     * double. */
+    double first_window;
+  };
+
+  /**
+   * The answer of the first-crossing search.
+   */
+  struct Crossing
+  {
+    /** +1: the upper level is reached, -1: the lower level, 0: neither before
+     * the horizon. */
+    int direction = 0;
+    /** Flight parameter of the crossing (the horizon when direction == 0). */
+    double s = 0.;
+  };
+
+  /** Work counters of the search. */
+  struct SearchStatistics
+  {
+    std::uint64_t n_value_evaluations = 0;
+    std::uint64_t n_enclosures        = 0;
+  };
+
+  /**
+   * The certified first-crossing search of energy-stepping.
+   *
+   * Guarantee: no level is reached on (0, s) where s is the returned crossing
+   * (or the horizon). It rests on the enclosures of FreeFlight::enclose(),
+   * never on samples:
+   * - the parameter range is covered from left to right by intervals [a, b]; an
+   * interval is dismissed only when the enclosure of f over it proves that
+   * neither level is reached there (the value range lies strictly between the
+   * levels), or when the enclosure of f' proves f monotone on it and the end
+   * values show that the level ahead is not reached;
+   * - an interval that cannot be decided is halved and its left half examined
+   * first, so the first crossing found is the first one;
+   * - where f' has one sign the crossing is unique and is located by
+   * safeguarded Newton iteration inside a shrinking bracket; the point returned
+   * lies on the near side of the bracket (never after the crossing, at most a
+   * few units of round-off before it);
+   * - the departure level, on which the flight starts, is excluded near s = 0
+   * only by a proven sign of f' over [0, b] (f moves into the terrace), never
+   * by comparing f(s) with the level, so the departure root at s = 0 is never
+   * returned and a return to the same level (a crossing right after a
+   * reflection) is found like any other;
+   * - an undecided interval shorter than the resolution (16 units of round-off
+   * of the flight parameter) is reported as a crossing at its left end: the
+   * search errs early, never late.
+   */
+  Crossing
+  find_first_crossing(const FreeFlight    &flight,
+                      const CrossingQuery &query,
+                      SearchStatistics    &statistics);
+} // namespace estep
+
+#endif

@@ -1,0 +1,153 @@
+#ifndef estep_time_integration_time_integrator_h
+#define estep_time_integration_time_integrator_h
+
+#include <estep/systems/mechanical_system.h>
+
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace estep
+{
+  /**
+   * The state of a run at one instant, as observers see it.
+   */
+  struct Snapshot
+  {
+    double t;
+    Vector q;
+    Vector v;
+    double kinetic_energy;
+    double potential_energy;
+    /** The potential the integrator conserves energy with: L h for
+     * energy-stepping, V for the others. */
+    double terraced_potential_energy;
+  };
+
+  /** A named work counter of an integrator (steps, reflections, evaluations,
+   * ...). */
+  using Counter = std::pair<std::string, std::uint64_t>;
+
+  /**
+   * A time integrator of a MechanicalSystem. The driver (run_time_loop()) calls
+   * step() until the end time and asks for dense output at the requested output
+   * times in between.
+   */
+  class TimeIntegrator
+  {
+  public:
+    explicit TimeIntegrator(const MechanicalSystem &system);
+    virtual ~TimeIntegrator() = default;
+
+    /** A short name for output ("energy stepping", ...). */
+    virtual std::string
+    name() const = 0;
+
+    /** Set the initial state. */
+    virtual void
+    initialize(const double t0, const Vector &q0, const Vector &v0) = 0;
+
+    /**
+     * Advance by one step, never past @p t_limit. Throws UnstableRun when the
+     * state becomes non-finite.
+     */
+    virtual void
+    step(const double t_limit) = 0;
+
+    /** The state at time t in [previous_time(), time()], exactly as the scheme
+     * defines it between its steps. */
+    virtual Snapshot
+    dense_output(const double t) const = 0;
+
+    /** Work counters, in a fixed order. */
+    virtual std::vector<Counter>
+    counters() const = 0;
+
+    double
+    time() const
+    {
+      return t;
+    }
+
+    double
+    previous_time() const
+    {
+      return t_previous;
+    }
+
+    const Vector &
+    position() const
+    {
+      return q;
+    }
+
+    const Vector &
+    velocity() const
+    {
+      return v;
+    }
+
+    /** Number of steps taken. */
+    std::uint64_t
+    n_steps() const
+    {
+      return steps;
+    }
+
+    /** Smallest step taken so far (0 before the first step). */
+    double
+    min_step() const
+    {
+      return smallest_step;
+    }
+
+    /** Largest step taken so far (0 before the first step). */
+    double
+    max_step() const
+    {
+      return largest_step;
+    }
+
+    /** The system integrated. */
+    const MechanicalSystem &
+    mechanical_system() const
+    {
+      return system;
+    }
+
+  protected:
+    /** Record the end of one step of length t - t_previous. */
+    void
+    count_step();
+
+    const MechanicalSystem &system;
+    double                  t          = 0.;
+    double                  t_previous = 0.;
+    Vector                  q, v;
+    std::uint64_t           steps         = 0;
+    double                  smallest_step = 0.;
+    double                  largest_step  = 0.;
+  };
+
+  /** Thrown when a run becomes unstable (non-finite or exploding state). */
+  class UnstableRun : public std::exception
+  {
+  public:
+    explicit UnstableRun(std::string message)
+      : message(std::move(message))
+    {}
+
+    const char *
+    what() const noexcept override
+    {
+      return message.c_str();
+    }
+
+  private:
+    std::string message;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,395 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/revision.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/app/application.h>
+#include <estep/app/problem.h>
+#include <estep/app/run_parameters.h>
+#include <estep/base/config.h>
+#include <estep/io/history_writer.h>
+#include <estep/io/json_writer.h>
+#include <estep/io/progress_line.h>
+#include <estep/io/trajectory_norm.h>
+#include <estep/time_integration/energy_stepping.h>
+#include <estep/time_integration/explicit_newmark.h>
+#include <estep/time_integration/time_loop.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace estep
+{
+  namespace
+  {
+    const char *usage =
+      "Usage: estep [options] INPUT.prm\n"
+      "\n"
+      "Energy-stepping for nonlinear elastodynamics and particle systems, on deal.II.\n"
+      "\n"
+      "Options:\n"
+      "  -h, --help                     print this help and exit\n"
+      "  -v, --version                  print the version and exit\n"
+      "  --print-parameters [INPUT]     print every parameter with its documentation and\n"
+      "                                 its value (the default, or as INPUT and --set give\n"
+      "                                 it) to standard output, and exit; JSON when INPUT\n"
+      "                                 is a .json file, PRM otherwise\n"
+      "  -s, --set \"Section/Entry=value\" override an entry of INPUT.prm (repeatable);\n"
+      "                                 nested subsections are separated by '/'\n"
+      "\n"
+      "A run writes the parameters used (parameters.prm), history.csv and summary.json to\n"
+      "the directory named by 'set Output directory'.\n"
+      "Exit codes: 0 completed, 1 bad input, 2 the run became unstable.\n";
+
+    /** What the command line asks for. */
+    struct CommandLine
+    {
+      bool        help = false, version = false, print_parameters = false;
+      std::string input_file;
+      std::vector<std::string> overrides;
+    };
+
+    bool
+    has_extension(const std::string &name, const std::string &extension)
+    {
+      return name.size() > extension.size() &&
+             name.compare(name.size() - extension.size(),
+                          extension.size(),
+                          extension) == 0;
+    }
+
+    CommandLine
+    parse_command_line(int argc, char **argv)
+    {
+      CommandLine command;
+      for (int i = 1; i < argc; ++i)
+        {
+          const std::string arg = argv[i];
+          if (arg == "-h" || arg == "--help")
+            command.help = true;
+          else if (arg == "-v" || arg == "--version")
+            command.version = true;
+          else if (arg == "--print-parameters")
+            command.print_parameters = true;
+          else if (arg == "-s" || arg == "--set")
+            {
+              if (i + 1 >= argc)
+                throw std::runtime_error(
+                  "The option " + arg +
+                  " needs an argument \"Section/Entry=value\".");
+              command.overrides.push_back(argv[++i]);
+            }
+          else if (arg.rfind("--set=", 0) == 0)
+            command.overrides.push_back(arg.substr(6));
+          else if (!arg.empty() && arg[0] == '-')
+            throw std::runtime_error("Unknown option <" + arg +
+                                     ">. See estep --help.");
+          else if (command.input_file.empty())
+            command.input_file = arg;
+          else
+            throw std::runtime_error("More than one input file given (<" +
+                                     command.input_file + "> and <" + arg +
+                                     ">). See estep --help.");
+        }
+      return command;
+    }
+
+    /** The additional information of a deal.II exception, without its source
+     * location. */
+    std::string
+    deal_ii_message(const dealii::ExceptionBase &exception)
+    {
+      std::ostringstream info;
+      exception.print_info(info);
+      std::string text = dealii::Utilities::trim(info.str());
+      // Collapse deal.II's hard line breaks and indentation into one line of
+      // text.
+      std::string collapsed;
+      bool        space = false;
+      for (const char c : text)
+        {
+          if (c == '\n' || c == ' ' || c == '\t')
+            space = true;
+          else
+            {
+              if (space && !collapsed.empty())
+                collapsed += ' ';
+              collapsed += c;
+              space = false;
+            }
+        }
+      return collapsed.empty() ? std::string(exception.get_exc_name()) :
+                                 collapsed;
+    }
+
+    /** Apply one "Section/Sub/Entry=value" override. */
+    void
+    apply_override(dealii::ParameterHandler &prm, const std::string &text)
+    {
+      const auto equals = text.find('=');
+      if (equals == std::string::npos)
+        throw std::runtime_error(
+          "--set \"" + text + "\": expected the form \"Section/Entry=value\".");
+      const std::string path = dealii::Utilities::trim(text.substr(0, equals));
+      const std::string value =
+        dealii::Utilities::trim(text.substr(equals + 1));
+      std::vector<std::string> sections =
+        dealii::Utilities::split_string_list(path, '/');
+      if (sections.empty() || sections.back().empty())
+        throw std::runtime_error("--set \"" + text + "\": no entry name.");
+      const std::string entry = sections.back();
+      sections.pop_back();
+      if (!sections.empty() && !prm.subsection_path_exists(sections))
+        throw std::runtime_error("--set \"" + text +
+                                 "\": there is no subsection <" +
+                                 path.substr(0, path.rfind('/')) + ">.");
+      for (const std::string &section : sections)
+        prm.enter_subsection(section);
+      try
+        {
+          prm.set(entry, value);
+        }
+      catch (const dealii::ExceptionBase &exception)
+        {
+          for (unsigned int i = 0; i < sections.size(); ++i)
+            prm.leave_subsection();
+          throw std::runtime_error("--set \"" + text +
+                                   "\": " + deal_ii_message(exception));
+        }
+      for (unsigned int i = 0; i < sections.size(); ++i)
+        prm.leave_subsection();
+    }
+
+    /** Declare every parameter, then read the input file and the overrides, if
+     * any. */
+    void
+    read_parameters(const CommandLine &command, dealii::ParameterHandler &prm)
+    {
+      RunParameters::declare_parameters(prm);
+      declare_problem_parameters(prm);
+      if (!command.input_file.empty())
+        {
+          if (!std::filesystem::is_regular_file(command.input_file))
+            throw std::runtime_error("The input file <" + command.input_file +
+                                     "> does not exist or is not a file.");
+          if (!has_extension(command.input_file, ".prm") &&
+              !has_extension(command.input_file, ".json") &&
+              !has_extension(command.input_file, ".xml"))
+            throw std::runtime_error("The input file <" + command.input_file +
+                                     "> must end in .prm, .json or .xml.");
+          prm.parse_input(command.input_file);
+        }
+      for (const std::string &text : command.overrides)
+        apply_override(prm, text);
+    }
+
+    std::unique_ptr<TimeIntegrator>
+    create_integrator(const RunParameters    &parameters,
+                      const MechanicalSystem &system)
+    {
+      if (parameters.method == "energy stepping")
+        return std::make_unique<EnergyStepping>(system, parameters.energy_step);
+      return std::make_unique<ExplicitNewmark>(system, parameters.time_step);
+    }
+
+    JsonObject
+    momenta_json(const Momenta &m)
+    {
+      return JsonObject()
+        .add("linear", std::vector<double>(m.linear, m.linear + 3))
+        .add("angular", std::vector<double>(m.angular, m.angular + 3));
+    }
+
+    /** |b - a| relative to |a|, or absolute where a is (numerically) zero. */
+    double
+    drift(const double a, const double b, const double scale)
+    {
+      return std::abs(b - a) / (std::abs(a) > 1e-14 * scale ? std::abs(a) : 1.);
+    }
+
+    int
+    run(const CommandLine &command)
+    {
+      dealii::ParameterHandler prm;
+      read_parameters(command, prm);
+
+      RunParameters parameters;
+      parameters.parse_parameters(prm);
+      Problem problem = create_problem(prm);
+
+      const std::filesystem::path directory(parameters.output_directory);
+      std::filesystem::create_directories(directory);
+      {
+        std::ostringstream text;
+        prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+        write_file_atomically((directory / "parameters.prm").string(),
+                              text.str());
+      }
+
+      const MechanicalSystem &system = *problem.system;
+      auto integrator                = create_integrator(parameters, system);
+      integrator->initialize(parameters.start_time, problem.q0, problem.v0);
+
+      const double T0 =
+        kinetic_energy(system, problem.q0.size() ? problem.v0 : Vector());
+      const double  V0       = system.energy(problem.q0);
+      const Momenta momenta0 = compute_momenta(system, problem.q0, problem.v0);
+
+      HistoryWriter  history((directory / "history.csv").string(), *integrator);
+      TrajectoryNorm norm;
+      std::vector<RunObserver *> observers = {&history};
+      if (parameters.h1_norm)
+        observers.push_back(&norm);
+      std::unique_ptr<ProgressLine> progress;
+      if (parameters.progress == "on" ||
+          (parameters.progress == "auto" && ProgressLine::stderr_is_terminal()))
+        {
+          progress = std::make_unique<ProgressLine>(parameters.start_time,
+                                                    parameters.end_time);
+          observers.push_back(progress.get());
+        }
+
+      TimeLoopSettings settings;
+      settings.start_time      = parameters.start_time;
+      settings.end_time        = parameters.end_time;
+      settings.output_interval = parameters.history_interval;
+      settings.blowup_factor   = parameters.blowup_factor;
+      const TimeLoopResult result =
+        run_time_loop(*integrator, settings, observers);
+      progress.reset();
+
+      // The summary.
+      const Vector &q        = integrator->position();
+      const Vector &v        = integrator->velocity();
+      const double  T1       = kinetic_energy(system, v);
+      const double  V1       = system.energy(q);
+      const Momenta momenta1 = compute_momenta(system, q, v);
+      const double  scale    = std::abs(T0) + std::abs(V0);
+
+      JsonObject summary;
+      summary.add("estep version", ESTEP_VERSION)
+        .add("status", to_string(result.status))
+        .add("message", result.message)
+        .add("system", system.name())
+        .add("problem", problem.description)
+        .add("degrees of freedom", system.n_dofs())
+        .add("method", integrator->name())
+        .add("start time", parameters.start_time)
+        .add("end time", parameters.end_time)
+        .add("final time", result.final_time)
+        .add("wall seconds", result.wall_seconds);
+      JsonObject counters;
+      for (const Counter &counter : integrator->counters())
+        counters.add(counter.first, counter.second);
+      summary.add("counters", counters);
+      const double elapsed = result.final_time - parameters.start_time;
+      summary
+        .add("mean step",
+             integrator->n_steps() ? elapsed / integrator->n_steps() : 0.)
+        .add("min step", integrator->min_step())
+        .add("max step", integrator->max_step());
+      JsonObject energies;
+      energies.add("initial kinetic", T0)
+        .add("initial potential", V0)
+        .add("final kinetic", T1)
+        .add("final potential", V1)
+        .add("total energy drift", drift(T0 + V0, T1 + V1, scale));
+      if (const auto *stepping =
+            dynamic_cast<const EnergyStepping *>(integrator.get()))
+        {
+          const double Eh0 = T0 + std::floor(V0 / stepping->energy_step()) *
+                                    stepping->energy_step();
+          energies.add("energy step", stepping->energy_step())
+            .add("initial terraced energy", Eh0)
+            .add("final terraced energy", stepping->terraced_energy())
+            .add("terraced energy drift",
+                 drift(Eh0, stepping->terraced_energy(), scale));
+        }
+      summary.add("energies", energies);
+      double linear_drift = 0., angular_drift = 0.;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          linear_drift =
+            std::max(linear_drift,
+                     std::abs(momenta1.linear[c] - momenta0.linear[c]));
+          angular_drift =
+            std::max(angular_drift,
+                     std::abs(momenta1.angular[c] - momenta0.angular[c]));
+        }
+      summary.add("initial momenta", momenta_json(momenta0))
+        .add("final momenta", momenta_json(momenta1))
+        .add("linear momentum drift", linear_drift)
+        .add("angular momentum drift", angular_drift);
+      if (parameters.h1_norm)
+        summary.add("h1 norm", norm.h1_norm());
+      write_file_atomically((directory / "summary.json").string(),
+                            summary.to_string() + "\n");
+
+      std::cout << "estep: " << integrator->name() << " on the "
+                << system.name() << ": " << to_string(result.status)
+                << " at t = " << result.final_time << " after "
+                << integrator->n_steps() << " steps in " << result.wall_seconds
+                << " s; output in " << directory.string() << "/\n";
+      if (result.status == RunStatus::unstable)
+        {
+          std::cerr << "estep: " << result.message << '\n';
+          return exit_unstable;
+        }
+      return exit_success;
+    }
+  } // namespace
+
+
+
+  int
+  run_application(int argc, char **argv)
+  {
+    // deal.II's exceptions reach us as exceptions, not as aborts with a stack
+    // trace.
+    dealii::deal_II_exceptions::disable_abort_on_exception();
+    dealii::deal_II_exceptions::suppress_stacktrace_in_exceptions();
+    try
+      {
+        const CommandLine command = parse_command_line(argc, argv);
+        if (command.help)
+          {
+            std::cout << usage;
+            return exit_success;
+          }
+        if (command.version)
+          {
+            std::cout << "estep " << ESTEP_VERSION << " (deal.II "
+                      << DEAL_II_PACKAGE_VERSION << ")\n";
+            return exit_success;
+          }
+        if (command.print_parameters)
+          {
+            dealii::ParameterHandler prm;
+            read_parameters(command, prm);
+            prm.print_parameters(std::cout,
+                                 has_extension(command.input_file, ".json") ?
+                                   dealii::ParameterHandler::JSON :
+                                   dealii::ParameterHandler::PRM);
+            return exit_success;
+          }
+        if (command.input_file.empty())
+          throw std::runtime_error(
+            "No input file given. Usage: estep [options] INPUT.prm "
+            "(see estep --help).");
+        return run(command);
+      }
+    catch (const dealii::ExceptionBase &exception)
+      {
+        std::cerr << "estep: error: " << deal_ii_message(exception) << '\n';
+      }
+    catch (const std::exception &exception)
+      {
+        std::cerr << "estep: error: " << exception.what() << '\n';
+      }
+    return exit_input_error;
+  }
+} // namespace estep

@@ -1,0 +1,116 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <estep/app/run_parameters.h>
+
+#include <stdexcept>
+
+namespace estep
+{
+  void
+  RunParameters::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using dealii::Patterns::Bool;
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Selection;
+    const double max = Double::max_double_value;
+
+    prm.declare_entry(
+      "Output directory",
+      "output",
+      dealii::Patterns::DirectoryName(),
+      "Directory the run writes to (created if needed): parameters.prm, "
+      "history.csv and summary.json.");
+
+    prm.enter_subsection("Time integration");
+    {
+      prm.declare_entry(
+        "Method",
+        "energy stepping",
+        Selection("energy stepping|explicit newmark"),
+        "Time integrator: energy stepping (exact flow of the terraced "
+        "potential h floor(V/h)) or explicit newmark (beta = 0, gamma = "
+        "1/2, velocity Verlet).");
+      prm.declare_entry("Start time", "0", Double(-max, max), "Initial time.");
+      prm.declare_entry("End time",
+                        "1",
+                        Double(-max, max),
+                        "Final time; must exceed the start time.");
+      prm.declare_entry(
+        "Energy step",
+        "1e-3",
+        Double(0., max),
+        "Energy step h of energy stepping (energy units of the system). "
+        "The time steps follow from it.");
+      prm.declare_entry("Time step",
+                        "1e-3",
+                        Double(0., max),
+                        "Time step of explicit newmark.");
+      prm.declare_entry(
+        "Blow-up factor",
+        "1e3",
+        Double(1., max),
+        "A run stops with status unstable when its kinetic energy exceeds "
+        "this factor times the initial |T| + |V|.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    {
+      prm.declare_entry(
+        "History interval",
+        "0.1",
+        Double(0., max),
+        "Write a row of history.csv every this much simulated time, from "
+        "the start time on, and at the end time; 0 writes the start and "
+        "the end only.");
+      prm.declare_entry(
+        "Progress",
+        "auto",
+        Selection("auto|on|off"),
+        "Show a progress line on standard error: auto shows it when "
+        "standard error is a terminal.");
+      prm.declare_entry(
+        "H1 norm",
+        "false",
+        Bool(),
+        "Accumulate the H1 norm of the trajectory, (integral |q|^2 + "
+        "|q'|^2 dt)^(1/2), and report it in summary.json.");
+    }
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  RunParameters::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    output_directory = prm.get("Output directory");
+    if (output_directory.empty())
+      throw std::runtime_error("Output directory: must not be empty.");
+
+    prm.enter_subsection("Time integration");
+    method        = prm.get("Method");
+    start_time    = prm.get_double("Start time");
+    end_time      = prm.get_double("End time");
+    energy_step   = prm.get_double("Energy step");
+    time_step     = prm.get_double("Time step");
+    blowup_factor = prm.get_double("Blow-up factor");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    history_interval = prm.get_double("History interval");
+    progress         = prm.get("Progress");
+    h1_norm          = prm.get_bool("H1 norm");
+    prm.leave_subsection();
+
+    if (!(end_time > start_time))
+      throw std::runtime_error(
+        "Time integration/End time: must be larger than the start time (" +
+        std::to_string(start_time) + ").");
+    if (method == "energy stepping" && !(energy_step > 0.))
+      throw std::runtime_error(
+        "Time integration/Energy step: must be positive.");
+    if (method == "explicit newmark" && !(time_step > 0.))
+      throw std::runtime_error("Time integration/Time step: must be positive.");
+  }
+} // namespace estep

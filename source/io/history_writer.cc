@@ -1,0 +1,54 @@
+#include <estep/io/history_writer.h>
+
+#include <iomanip>
+#include <stdexcept>
+
+namespace estep
+{
+  HistoryWriter::HistoryWriter(const std::string    &filename,
+                               const TimeIntegrator &integrator)
+    : integrator(integrator)
+    , start_time(integrator.time())
+    , out(filename)
+  {
+    if (!out)
+      throw std::runtime_error("Cannot open the history file <" + filename +
+                               "> for writing.");
+    out << "time,kinetic_energy,potential_energy,terraced_potential_energy,"
+           "total_energy,terraced_total_energy,"
+           "linear_momentum_x,linear_momentum_y,linear_momentum_z,"
+           "angular_momentum_x,angular_momentum_y,angular_momentum_z,"
+           "steps,mean_step";
+    for (const std::string &name :
+         integrator.mechanical_system().observable_names())
+      out << ',' << name;
+    out << '\n' << std::setprecision(16);
+  }
+
+
+
+  void
+  HistoryWriter::observe(const Snapshot &s)
+  {
+    const MechanicalSystem &system  = integrator.mechanical_system();
+    const Momenta           momenta = compute_momenta(system, s.q, s.v);
+    const std::uint64_t     steps   = integrator.n_steps();
+    out << s.t << ',' << s.kinetic_energy << ',' << s.potential_energy << ','
+        << s.terraced_potential_energy << ','
+        << s.kinetic_energy + s.potential_energy << ','
+        << s.kinetic_energy + s.terraced_potential_energy;
+    for (const double p : momenta.linear)
+      out << ',' << p;
+    for (const double l : momenta.angular)
+      out << ',' << l;
+    out << ',' << steps << ',';
+    if (steps > 0)
+      out << (integrator.time() - start_time) / static_cast<double>(steps);
+    else
+      out << 0;
+    for (const double x : system.observables(s.q, s.v))
+      out << ',' << x;
+    out << '\n';
+    out.flush();
+  }
+} // namespace estep

@@ -1,0 +1,58 @@
+#include <estep/systems/mechanical_system.h>
+
+namespace estep
+{
+  std::optional<ConstraintEvent>
+  MechanicalSystem::first_constraint_event(const Vector &,
+                                           const Vector &,
+                                           const double) const
+  {
+    return std::nullopt;
+  }
+
+  std::vector<std::string>
+  MechanicalSystem::observable_names() const
+  {
+    return {};
+  }
+
+  std::vector<double>
+  MechanicalSystem::observables(const Vector &, const Vector &) const
+  {
+    return {};
+  }
+
+  Momenta
+  compute_momenta(const MechanicalSystem &system,
+                  const Vector           &q,
+                  const Vector           &v)
+  {
+    const unsigned int dim      = system.spatial_dimension();
+    const Vector      &inv_mass = system.inverse_mass();
+    Momenta            m;
+    for (unsigned int i = 0; i + dim <= q.size(); i += dim)
+      {
+        double x[3] = {0., 0., 0.}, p[3] = {0., 0., 0.};
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            x[c] = q[i + c];
+            p[c] = v[i + c] / inv_mass[i + c];
+            m.linear[c] += p[c];
+          }
+        m.angular[0] += x[1] * p[2] - x[2] * p[1];
+        m.angular[1] += x[2] * p[0] - x[0] * p[2];
+        m.angular[2] += x[0] * p[1] - x[1] * p[0];
+      }
+    return m;
+  }
+
+  double
+  kinetic_energy(const MechanicalSystem &system, const Vector &v)
+  {
+    const Vector &inv_mass = system.inverse_mass();
+    double        t        = 0.;
+    for (unsigned int i = 0; i < v.size(); ++i)
+      t += v[i] * v[i] / inv_mass[i];
+    return 0.5 * t;
+  }
+} // namespace estep

@@ -1,0 +1,212 @@
+#include <estep/time_integration/energy_stepping.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace estep
+{
+  EnergyStepping::EnergyStepping(const MechanicalSystem &system,
+                                 const double            energy_step)
+    : TimeIntegrator(system)
+    , h(energy_step)
+  {
+    if (!(energy_step > 0.) || !std::isfinite(energy_step))
+      throw std::invalid_argument(
+        "The energy step must be positive and finite.");
+  }
+
+
+
+  std::string
+  EnergyStepping::name() const
+  {
+    return "energy stepping";
+  }
+
+
+
+  void
+  EnergyStepping::initialize(const double  t0,
+                             const Vector &q0,
+                             const Vector &v0)
+  {
+    t = t_previous = t0;
+    q = q_start = q0;
+    v = v_flight    = v0;
+    const double V0 = system.energy(q0);
+    if (!std::isfinite(V0))
+      throw std::runtime_error(
+        "The initial configuration is inadmissible: its potential energy is not finite.");
+    level        = static_cast<long long>(std::floor(V0 / h));
+    level_flight = level;
+    departure    = Departure::interior;
+    last_flight  = 0.;
+    gradient_buffer.reinit(q0.size());
+  }
+
+
+
+  void
+  EnergyStepping::step(const double t_limit)
+  {
+    const double horizon = t_limit - t;
+    if (!(horizon > 0.))
+      return;
+
+    const auto    flight = system.free_flight(q, v);
+    CrossingQuery query;
+    query.lower_level  = level * h;
+    query.upper_level  = (level + 1) * h;
+    query.departure    = departure;
+    query.horizon      = horizon;
+    query.first_window = (last_flight > 0.) ? 2. * last_flight : horizon;
+    const Crossing crossing =
+      find_first_crossing(*flight, query, search_statistics);
+
+    const double s_level = crossing.direction != 0 ? crossing.s : horizon;
+    auto         contact = system.first_constraint_event(q, v, s_level);
+
+    // The flight.
+    t_previous     = t;
+    q_start        = q;
+    v_flight       = v;
+    level_flight   = level;
+    const double s = contact ? contact->s : s_level;
+    q.add(s, v);
+    t           = (s == horizon) ? t_limit : t + s;
+    last_flight = s;
+    count_step();
+
+    if (contact)
+      {
+        reflect(contact->normal);
+        ++n_constraint_events;
+        departure = Departure::interior;
+      }
+    else if (crossing.direction != 0)
+      jump_at_level(crossing.direction);
+    else
+      departure = Departure::interior;
+
+    for (const double x : v)
+      if (!std::isfinite(x))
+        throw UnstableRun(
+          "The velocity became non-finite at t = " + std::to_string(t) + ".");
+  }
+
+
+
+  void
+  EnergyStepping::jump_at_level(const int direction)
+  {
+    system.gradient(q, gradient_buffer);
+    ++n_gradients;
+    const Vector &inverse_mass = system.inverse_mass();
+    double        a = 0., m = 0.;
+    for (unsigned int i = 0; i < q.size(); ++i)
+      {
+        a += gradient_buffer[i] * v[i];
+        m += gradient_buffer[i] * gradient_buffer[i] * inverse_mass[i];
+      }
+
+    double lambda = 0.;
+    if (direction > 0)
+      {
+        if (a <= 0. || m == 0.)
+          {
+            // Touching the upper level without moving up through it: nothing to
+            // do.
+            departure = Departure::from_upper_level;
+            return;
+          }
+        const double discriminant = a * a - 2. * h * m;
+        if (discriminant >= 0.)
+          {
+            lambda = (-a + std::sqrt(discriminant)) / m;
+            ++level;
+            ++n_climbs;
+            departure = Departure::from_lower_level;
+          }
+        else
+          {
+            lambda = -2. * a / m;
+            ++n_reflections;
+            departure = Departure::from_upper_level;
+          }
+      }
+    else
+      {
+        if (a >= 0. || m == 0.)
+          {
+            departure = Departure::from_lower_level;
+            return;
+          }
+        lambda = (-a - std::sqrt(a * a + 2. * h * m)) / m;
+        --level;
+        ++n_descents;
+        departure = Departure::from_upper_level;
+      }
+
+    for (unsigned int i = 0; i < v.size(); ++i)
+      v[i] += lambda * inverse_mass[i] * gradient_buffer[i];
+  }
+
+
+
+  void
+  EnergyStepping::reflect(const Vector &normal)
+  {
+    const Vector &inverse_mass = system.inverse_mass();
+    double        a = 0., m = 0.;
+    for (unsigned int i = 0; i < v.size(); ++i)
+      {
+        a += normal[i] * v[i];
+        m += normal[i] * normal[i] * inverse_mass[i];
+      }
+    if (m == 0.)
+      return;
+    const double lambda = -2. * a / m;
+    for (unsigned int i = 0; i < v.size(); ++i)
+      v[i] += lambda * inverse_mass[i] * normal[i];
+  }
+
+
+
+  Snapshot
+  EnergyStepping::dense_output(const double time) const
+  {
+    Snapshot snapshot;
+    snapshot.t = time;
+    snapshot.q = q_start;
+    snapshot.q.add(time - t_previous, v_flight);
+    snapshot.v                         = v_flight;
+    snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
+    snapshot.potential_energy          = system.energy(snapshot.q);
+    snapshot.terraced_potential_energy = level_flight * h;
+    return snapshot;
+  }
+
+
+
+  double
+  EnergyStepping::terraced_energy() const
+  {
+    return kinetic_energy(system, v) + level * h;
+  }
+
+
+
+  std::vector<Counter>
+  EnergyStepping::counters() const
+  {
+    return {{"steps", steps},
+            {"climbs", n_climbs},
+            {"descents", n_descents},
+            {"reflections", n_reflections},
+            {"constraint events", n_constraint_events},
+            {"energy evaluations", search_statistics.n_value_evaluations},
+            {"enclosures", search_statistics.n_enclosures},
+            {"gradient evaluations", n_gradients}};
+  }
+} // namespace estep

@@ -1,0 +1,133 @@
+#include <estep/time_integration/explicit_newmark.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace estep
+{
+  ExplicitNewmark::ExplicitNewmark(const MechanicalSystem &system,
+                                   const double            time_step)
+    : TimeIntegrator(system)
+    , dt(time_step)
+  {
+    if (!(time_step > 0.) || !std::isfinite(time_step))
+      throw std::invalid_argument("The time step must be positive and finite.");
+  }
+
+
+
+  std::string
+  ExplicitNewmark::name() const
+  {
+    return "explicit newmark";
+  }
+
+
+
+  void
+  ExplicitNewmark::initialize(const double  t0,
+                              const Vector &q0,
+                              const Vector &v0)
+  {
+    t = t_previous = t0;
+    q = q_old = q0;
+    v = v_old = v0;
+    gradient_buffer.reinit(q0.size());
+    acceleration.reinit(q0.size());
+    compute_acceleration(q, acceleration);
+  }
+
+
+
+  void
+  ExplicitNewmark::compute_acceleration(const Vector &x, Vector &a)
+  {
+    system.gradient(x, gradient_buffer);
+    ++n_gradients;
+    const Vector &inverse_mass = system.inverse_mass();
+    for (unsigned int i = 0; i < x.size(); ++i)
+      a[i] = -inverse_mass[i] * gradient_buffer[i];
+  }
+
+
+
+  void
+  ExplicitNewmark::step(const double t_limit)
+  {
+    const double remaining = t_limit - t;
+    if (!(remaining > 0.))
+      return;
+    // Shorten the last step so the run ends on t_limit (no step of round-off
+    // length).
+    const double tau = (remaining < dt * (1. + 1e-12)) ? remaining : dt;
+
+    q_old = q;
+    v_old = v;
+    for (unsigned int i = 0; i < q.size(); ++i)
+      {
+        q[i] += tau * v[i] + 0.5 * tau * tau * acceleration[i];
+        v[i] += 0.5 * tau * acceleration[i];
+      }
+    compute_acceleration(q, acceleration);
+    bool finite = true;
+    for (unsigned int i = 0; i < q.size(); ++i)
+      {
+        v[i] += 0.5 * tau * acceleration[i];
+        finite = finite && std::isfinite(v[i]) && std::isfinite(q[i]);
+      }
+
+    t_previous = t;
+    t          = (tau == remaining) ? t_limit : t + tau;
+    count_step();
+    if (!finite)
+      throw UnstableRun(
+        "The state became non-finite at t = " + std::to_string(t) +
+        ": the time step is beyond the stability limit.");
+  }
+
+
+
+  Snapshot
+  ExplicitNewmark::dense_output(const double time) const
+  {
+    Snapshot     snapshot;
+    const double tau = t - t_previous;
+    snapshot.t       = time;
+    if (tau <= 0.)
+      {
+        snapshot.q = q;
+        snapshot.v = v;
+      }
+    else
+      {
+        // Cubic Hermite interpolation on [t_previous, t] in x in [0, 1].
+        const double x   = (time - t_previous) / tau;
+        const double h00 = (1 + 2 * x) * (1 - x) * (1 - x),
+                     h10 = x * (1 - x) * (1 - x), h01 = x * x * (3 - 2 * x),
+                     h11 = x * x * (x - 1);
+        const double d00 = 6 * x * (x - 1), d10 = (1 - x) * (1 - 3 * x),
+                     d01 = -6 * x * (x - 1), d11 = x * (3 * x - 2);
+        snapshot.q.reinit(q.size());
+        snapshot.v.reinit(q.size());
+        for (unsigned int i = 0; i < q.size(); ++i)
+          {
+            snapshot.q[i] = h00 * q_old[i] + h10 * tau * v_old[i] + h01 * q[i] +
+                            h11 * tau * v[i];
+            snapshot.v[i] =
+              (d00 * q_old[i] + d01 * q[i]) / tau + d10 * v_old[i] + d11 * v[i];
+          }
+      }
+    snapshot.kinetic_energy            = kinetic_energy(system, snapshot.v);
+    snapshot.potential_energy          = system.energy(snapshot.q);
+    snapshot.terraced_potential_energy = snapshot.potential_energy;
+    return snapshot;
+  }
+
+
+
+  std::vector<Counter>
+  ExplicitNewmark::counters() const
+  {
+    return {{"steps", steps}, {"gradient evaluations", n_gradients}};
+  }
+} // namespace estep

@@ -1,0 +1,221 @@
+#include <estep/time_integration/first_crossing_search.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr double epsilon = std::numeric_limits<double>::epsilon();
+
+    /** A parameter interval [a, b] waiting to be examined, with f at its ends.
+     */
+    struct PendingInterval
+    {
+      double a, b, fa, fb;
+    };
+
+    /**
+     * The crossing of @p level on [a, b], where f is proven monotone, f(a) has
+     * not reached the level and f(b) has. Safeguarded Newton iteration inside a
+     * shrinking bracket [lo, hi] (lo on the near side, hi beyond), bisection
+     * when Newton leaves the bracket or is slow. The point returned is on the
+     * near side, or exactly on the level, and within a few units of round-off
+     * of the crossing.
+     */
+    double
+    locate_crossing(const FreeFlight &flight,
+                    const double      level,
+                    const double      a,
+                    const double      b,
+                    const double      fa,
+                    const double      fb,
+                    SearchStatistics &statistics)
+    {
+      const double sign =
+        (fb >= fa) ? 1. : -1.; // g = sign (f - level) increases
+      double       lo = a, hi = b;
+      const double g_lo = sign * (fa - level), g_hi = sign * (fb - level);
+      double       x             = (std::isfinite(g_hi) && g_hi > g_lo) ?
+                                     lo - g_lo * (hi - lo) / (g_hi - g_lo) :
+                                     0.5 * (lo + hi);
+      double       previous_step = hi - lo;
+      for (unsigned int iteration = 0; iteration < 200; ++iteration)
+        {
+          const double tolerance =
+            4. * epsilon * std::max(std::abs(lo), std::abs(hi));
+          if (hi - lo <= tolerance)
+            break;
+          if (!(x > lo && x < hi))
+            x = 0.5 * (lo + hi);
+          const LineValue fx = flight.value_and_derivative(x);
+          ++statistics.n_value_evaluations;
+          const double g = sign * (fx.value - level);
+          if (g == 0.)
+            return x;
+          (g < 0. ? lo : hi) = x;
+
+          const double slope = sign * fx.derivative;
+          double       step  = (slope > 0.) ? -g / slope : hi - lo;
+          if (!(x + step > lo && x + step < hi) ||
+              std::abs(step) > 0.5 * previous_step)
+            step = 0.5 * (lo + hi) - x; // bisect
+          previous_step = std::abs(step);
+
+          if (std::abs(step) <= tolerance)
+            {
+              // Converged. Stay on the near side: x itself, or a point just
+              // before it.
+              if (g < 0.)
+                return x;
+              const double before = std::max(x - 2. * tolerance, lo);
+              if (before == lo)
+                break;
+              ++statistics.n_value_evaluations;
+              if (sign * (flight.value(before) - level) <= 0.)
+                return before;
+              hi = before;
+              x  = 0.5 * (lo + hi);
+              continue;
+            }
+          x += step;
+        }
+      return lo;
+    }
+  } // namespace
+
+
+
+  Crossing
+  find_first_crossing(const FreeFlight    &flight,
+                      const CrossingQuery &query,
+                      SearchStatistics    &statistics)
+  {
+    const double c0    = query.lower_level;
+    const double c1    = query.upper_level;
+    const double limit = flight.admissible_limit();
+    const double end   = std::min(query.horizon, limit);
+    const int    departure_sign =
+      query.departure == Departure::from_lower_level ? +1 :
+         query.departure == Departure::from_upper_level ? -1 :
+                                                          0;
+    // f is proven monotone in the departure direction on [0, prefix_end].
+    double       prefix_end = 0.;
+    const double resolution_floor =
+      std::max(query.first_window, std::numeric_limits<double>::min());
+
+    const auto value_at = [&](const double s) {
+      if (s >= limit)
+        return std::numeric_limits<double>::infinity();
+      ++statistics.n_value_evaluations;
+      return flight.value(s);
+    };
+
+    std::vector<PendingInterval> pending;
+    double window_start = 0., window_length = std::min(query.first_window, end);
+    if (!(window_length > 0.))
+      window_length = end;
+    double f_start = value_at(0.);
+
+    while (window_start < end)
+      {
+        const double window_end = (window_start + window_length >= end) ?
+                                    end :
+                                    window_start + window_length;
+        const double f_end      = value_at(window_end);
+        pending.push_back({window_start, window_end, f_start, f_end});
+
+        while (!pending.empty())
+          {
+            const PendingInterval I = pending.back();
+            pending.pop_back();
+            const bool in_prefix   = departure_sign != 0 && I.a == prefix_end;
+            const bool at_limit    = I.b >= limit;
+            bool       up_possible = true, down_possible = true;
+
+            if (!at_limit)
+              {
+                const LineEnclosure enclosure = flight.enclose(I.a, I.b);
+                ++statistics.n_enclosures;
+                const bool increasing = enclosure.derivative.lower > 0.;
+                const bool decreasing = enclosure.derivative.upper < 0.;
+
+                if (in_prefix && (departure_sign > 0 ? increasing : decreasing))
+                  {
+                    // Moving away from the departure level all the way from s =
+                    // 0: only the level ahead can be reached, and only if f(b)
+                    // reaches it.
+                    prefix_end = I.b;
+                    if (departure_sign > 0 && I.fb >= c1)
+                      return {+1,
+                              locate_crossing(
+                                flight, c1, I.a, I.b, I.fa, I.fb, statistics)};
+                    if (departure_sign < 0 && I.fb <= c0)
+                      return {-1,
+                              locate_crossing(
+                                flight, c0, I.a, I.b, I.fa, I.fb, statistics)};
+                    continue;
+                  }
+
+                up_possible   = enclosure.value.upper >= c1;
+                down_possible = enclosure.value.lower <= c0;
+                if (!up_possible && !down_possible)
+                  continue;
+
+                if (!in_prefix && (increasing || decreasing))
+                  {
+                    // f(a) lies strictly inside the terrace (everything before
+                    // a has been dismissed), so a monotone f can only reach the
+                    // level ahead of it.
+                    if (increasing && I.fb >= c1)
+                      return {+1,
+                              locate_crossing(
+                                flight, c1, I.a, I.b, I.fa, I.fb, statistics)};
+                    if (decreasing && I.fb <= c0)
+                      return {-1,
+                              locate_crossing(
+                                flight, c0, I.a, I.b, I.fa, I.fb, statistics)};
+                    continue;
+                  }
+              }
+
+            const double resolution =
+              16. * epsilon * std::max(I.b, resolution_floor);
+            if (I.b - I.a <= resolution)
+              {
+                if (in_prefix)
+                  {
+                    // Not separable from the departure root at s = 0 (a
+                    // tangential departure): accepted as part of the departure.
+                    prefix_end = I.b;
+                    if (departure_sign > 0 && I.fb >= c1)
+                      return {+1, I.a};
+                    if (departure_sign < 0 && I.fb <= c0)
+                      return {-1, I.a};
+                    continue;
+                  }
+                // Undecidable at the resolution: report a crossing here (early,
+                // never late).
+                const bool up =
+                  at_limit ||
+                  (up_possible && (!down_possible ||
+                                   std::abs(I.fa - c1) <= std::abs(I.fa - c0)));
+                return {up ? +1 : -1, I.a};
+              }
+
+            const double mid = I.a + 0.5 * (I.b - I.a);
+            const double fm  = value_at(mid);
+            pending.push_back({mid, I.b, fm, I.fb});
+            pending.push_back({I.a, mid, I.fa, fm});
+          }
+
+        window_start = window_end;
+        f_start      = f_end;
+        window_length *= 2.;
+      }
+    return {0, end};
+  }
+} // namespace estep

@@ -1,0 +1,91 @@
+#include <estep/time_integration/time_loop.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace estep
+{
+  void
+  RunObserver::observe(const Snapshot &)
+  {}
+
+  void
+  RunObserver::after_step(const TimeIntegrator &)
+  {}
+
+  std::string
+  to_string(const RunStatus status)
+  {
+    return status == RunStatus::completed ? "completed" : "unstable";
+  }
+
+
+
+  TimeLoopResult
+  run_time_loop(TimeIntegrator                   &integrator,
+                const TimeLoopSettings           &settings,
+                const std::vector<RunObserver *> &observers)
+  {
+    const auto              wall_start = std::chrono::steady_clock::now();
+    const MechanicalSystem &system     = integrator.mechanical_system();
+    TimeLoopResult          result;
+
+    const double t0    = settings.start_time;
+    const double t_end = settings.end_time;
+    const double T0    = kinetic_energy(system, integrator.velocity());
+    const double V0    = system.energy(integrator.position());
+    const double bound = settings.blowup_factor * (std::abs(T0) + std::abs(V0));
+    unsigned int n_out = 0;
+    const auto   output_at = [&](const unsigned int k) {
+      const double t_k = t0 + k * settings.output_interval;
+      return (settings.output_interval > 0. && t_k < t_end) ? t_k : t_end;
+    };
+
+    const auto emit_outputs_until = [&](const double t_reached) {
+      // Output times in (previous, t_reached], the end time last.
+      while (n_out != static_cast<unsigned int>(-1))
+        {
+          const double t_k = output_at(n_out);
+          if (t_k > t_reached)
+            break;
+          const Snapshot snapshot = integrator.dense_output(t_k);
+          for (RunObserver *observer : observers)
+            observer->observe(snapshot);
+          n_out = (t_k == t_end) ? static_cast<unsigned int>(-1) : n_out + 1;
+        }
+    };
+
+    emit_outputs_until(t0);
+    try
+      {
+        while (integrator.time() < t_end)
+          {
+            integrator.step(t_end);
+            const double T = kinetic_energy(system, integrator.velocity());
+            if (!std::isfinite(T) || (bound > 0. && T > bound))
+              {
+                std::ostringstream message;
+                message << "The run became unstable at t = "
+                        << integrator.time() << ": the kinetic energy " << T
+                        << " exceeds " << settings.blowup_factor
+                        << " times the initial energy scale (Blow-up factor).";
+                throw UnstableRun(message.str());
+              }
+            for (RunObserver *observer : observers)
+              observer->after_step(integrator);
+            emit_outputs_until(integrator.time());
+          }
+      }
+    catch (const UnstableRun &unstable)
+      {
+        result.status  = RunStatus::unstable;
+        result.message = unstable.what();
+      }
+    result.final_time   = integrator.time();
+    result.wall_seconds = std::chrono::duration<double>(
+                            std::chrono::steady_clock::now() - wall_start)
+                            .count();
+    return result;
+  }
+} // namespace estep

@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# The estep command line: help, version, print-parameters, overrides, outputs, and every kind
+# of bad input with its one-line message and exit code.
+# Environment (set by ctest): ESTEP, the estep executable.
+set -u
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+
+fail() {
+  echo "FAILED: $*"
+  failures=$((failures + 1))
+}
+
+# expect CODE PATTERN -- ARGS...: run estep, check the exit code, that PATTERN (extended regex)
+# occurs in its output, and that an error is one line without an abort trace.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  "$ESTEP" "$@" > out.txt 2> err.txt
+  local rc=$?
+  [[ $rc == "$code" ]] || fail "estep $* exited with $rc, expected $code"
+  grep -Eq -- "$pattern" out.txt err.txt || fail "estep $*: no <$pattern> in its output: $(cat out.txt err.txt | head -5)"
+  if [[ $code == 1 ]]; then
+    [[ $(wc -l < err.txt) == 1 ]] || fail "estep $*: the error is not one line: $(cat err.txt)"
+    grep -Eq "error:" err.txt || fail "estep $*: no 'error:' on standard error"
+  fi
+  if grep -Eq "Stacktrace|An error occurred in line|Aborted|terminate called" err.txt; then
+    fail "estep $*: abort trace on standard error"
+  fi
+}
+
+cat > run.prm <<'PRM'
+set Output directory = run
+subsection Time integration
+  set End time = 2
+end
+subsection Output
+  set History interval = 0.5
+end
+PRM
+
+# Help, version, parameters.
+expect 0 "Usage: estep" -- --help
+expect 0 "Usage: estep" -- -h
+expect 0 "^estep [0-9]+\.[0-9]+\.[0-9]+ \(deal.II 9\." -- --version
+expect 0 "set Energy step" -- --print-parameters
+expect 0 "# Energy step h of energy stepping" -- --print-parameters
+expect 0 "set End time += 2" -- --print-parameters run.prm
+expect 0 "set End time += 7" -- --print-parameters run.prm --set "Time integration/End time=7"
+"$ESTEP" --print-parameters > all.prm
+for section in "Time integration" "Output" "Problem" "Argon cluster"; do
+  grep -q "^subsection $section\$" all.prm || fail "--print-parameters lacks subsection $section"
+done
+# Every entry is documented: each 'set' line follows a comment.
+awk '/^ *set /{ if (prev !~ /^ *#/) { print "undocumented: " $0; bad=1 } } { if ($0 !~ /^ *$/) prev=$0 } END { exit bad }' all.prm ||
+  fail "--print-parameters shows undocumented entries"
+# The printed file is a valid input, and JSON round-trips.
+"$ESTEP" --print-parameters run.prm > printed.prm
+sed -i 's/^set Output directory.*/set Output directory = printed/' printed.prm
+expect 0 "completed" -- printed.prm
+"$ESTEP" --print-parameters printed.prm > /dev/null || fail "printed.prm cannot be read back"
+
+# A run and its outputs.
+expect 0 "completed at t = 2" -- run.prm
+for file in parameters.prm history.csv summary.json; do
+  [[ -s run/$file ]] || fail "run/$file missing or empty"
+done
+grep -q '"status": "completed"' run/summary.json || fail "summary.json lacks status completed"
+grep -q '"final time": 2' run/summary.json || fail "summary.json lacks the final time"
+grep -q '"wall seconds"' run/summary.json || fail "summary.json lacks the wall time"
+[[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
+python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
+
+# Overrides.
+expect 0 "completed at t = 1" -- run.prm --set "Time integration/End time=1" --set "Output directory=over"
+grep -q "End time *= 1" over/parameters.prm || fail "parameters.prm does not record the override"
+expect 0 "explicit newmark" -- run.prm -s "Time integration/Method=explicit newmark" -s "Output directory=nm"
+
+# Bad input: one clear message naming the problem, exit code 1, output left alone.
+cp run/summary.json summary.before
+expect 1 "does not exist" -- missing.prm
+expect 1 "No input file" --
+expect 1 "Unknown option <--frobnicate>" -- --frobnicate run.prm
+expect 1 "More than one input file" -- run.prm run.prm
+printf 'set Output directory = run\nsubsection Time integration\n  this is not a statement\nend\n' > malformed.prm
+expect 1 "Line <3> of file <malformed.prm>.*could not be parsed" -- malformed.prm
+printf 'set Output directory = run\nsubsection Time integration\n  set End time = 1\n' > unbalanced.prm
+expect 1 "unequal numbers of 'subsection' and 'end'" -- unbalanced.prm
+printf 'set Output directory = run\nsubsection Time integration\n  set Energy stepp = 1\nend\n' > unknown.prm
+expect 1 "Line <3> of file <unknown.prm>.*Energy stepp" -- unknown.prm
+printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = -1\nend\n' > pattern.prm
+expect 1 "Line <3> of file <pattern.prm>.*Energy step" -- pattern.prm
+printf 'set Output directory = run\nsubsection Time integration\n  set Method = leapfrog\nend\n' > selection.prm
+expect 1 "leapfrog.*Method" -- selection.prm
+printf 'set Output directory = run\nsubsection Time integration\n  set End time = -1\nend\n' > times.prm
+expect 1 "End time: must be larger than the start time" -- times.prm
+printf 'set Output directory = run\nsubsection Argon cluster\n  set Initial velocities = 1, 2; 3, 4\nend\n' > counts.prm
+expect 1 "7 initial positions but 2 initial velocities" -- counts.prm
+expect 1 "<run.txt> does not exist" -- run.txt
+touch run.txt
+expect 1 "must end in .prm" -- run.txt
+expect 1 "--set \"Time integration/End time=x\".*<x>" -- run.prm --set "Time integration/End time=x"
+expect 1 "Endtime" -- run.prm --set "Time integration/Endtime=1"
+expect 1 "no subsection <Nope>" -- run.prm --set "Nope/End time=1"
+expect 1 "expected the form" -- run.prm --set "End time"
+expect 1 "needs an argument" -- run.prm --set
+cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"
+
+# A run that blows up: status unstable in summary.json, a clear message, exit code 2.
+expect 2 "became unstable" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Time step=0.5" -s "Output directory=blowup"
+grep -q '"status": "unstable"' blowup/summary.json || fail "summary.json of a blow-up lacks status unstable"
+grep -q '"message": "The run became unstable' blowup/summary.json || fail "summary.json of a blow-up lacks the message"
+if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up holds non-finite values"; fi
+
+# No progress line when standard error is not a terminal; forced on, it appears.
+"$ESTEP" run.prm -s "Output directory=quiet" 2> quiet.err > /dev/null
+[[ ! -s quiet.err ]] || fail "something was written to a non-terminal standard error: $(cat quiet.err)"
+
+echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
+[[ $failures == 0 ]]
