@@ -1,0 +1,288 @@
+// Energy-stepping: exact conservation, time reversibility, convergence to the
+// exact motion, and no level ever stepped over along a real system's flights.
+#include <estep/systems/lennard_jones_cluster.h>
+#include <estep/time_integration/energy_stepping.h>
+#include <estep/time_integration/time_loop.h>
+
+#include <gtest/gtest.h>
+
+#include "argon.h"
+#include "test_flights.h"
+
+#include <cmath>
+
+namespace
+{
+  using namespace estep;
+
+  double
+  relative_difference(const double a, const double b)
+  {
+    return std::abs(a - b) / std::abs(a);
+  }
+
+  TEST(EnergyStepping, ConservesEnergyAndMomentaOverHundredThousandSteps)
+  {
+    const Problem  argon = estep::testing::argon_cluster();
+    const double   h     = 1e-3; // epsilon: about 1e-4 |E0|
+    EnergyStepping stepping(*argon.system, h);
+    stepping.initialize(0., argon.q0, argon.v0);
+    const double  E0 = stepping.terraced_energy();
+    const Momenta m0 = compute_momenta(*argon.system, argon.q0, argon.v0);
+    ASSERT_GT(std::abs(m0.angular[2]), 0.1);
+
+    double worst_energy = 0., worst_linear = 0., worst_angular = 0.;
+    while (stepping.n_steps() < 100000)
+      {
+        stepping.step(1e6);
+        const Momenta m = compute_momenta(*argon.system,
+                                          stepping.position(),
+                                          stepping.velocity());
+        worst_energy =
+          std::max(worst_energy,
+                   relative_difference(E0, stepping.terraced_energy()));
+        worst_linear = std::max({worst_linear,
+                                 std::abs(m.linear[0] - m0.linear[0]),
+                                 std::abs(m.linear[1] - m0.linear[1])});
+        worst_angular =
+          std::max(worst_angular,
+                   relative_difference(m0.angular[2], m.angular[2]));
+      }
+    const auto counters = stepping.counters();
+    std::cout << "after " << stepping.n_steps()
+              << " steps (t = " << stepping.time() << "): terraced energy "
+              << worst_energy << " relative, linear momentum " << worst_linear
+              << " absolute, angular momentum " << worst_angular
+              << " relative\n";
+    EXPECT_LT(worst_energy, 1e-12);
+    EXPECT_LT(worst_linear, 1e-12); // the total momentum is zero
+    EXPECT_LT(worst_angular, 1e-12);
+    // The true energy stays within one energy step of the terraced one.
+    const double V = argon.system->energy(stepping.position());
+    EXPECT_LE(std::abs(V - stepping.terrace_index() * h), h * (1. + 1e-9));
+  }
+
+  TEST(EnergyStepping, IsTimeReversible)
+  {
+    // Forward, flip the velocities, back for as long. The terraced flow is
+    // reversible; the computed one is up to round-off, which near-grazing
+    // crossings amplify strongly (the jump depends on sqrt(a^2 - 2 h m)), so
+    // the horizons are a few hundred to a thousand steps.
+    const Problem argon = estep::testing::argon_cluster();
+    for (const auto &[h, T] : {std::pair{1e-2, 1.}, std::pair{1e-3, 0.25}})
+      {
+        EnergyStepping forward(*argon.system, h);
+        forward.initialize(0., argon.q0, argon.v0);
+        while (forward.time() < T)
+          forward.step(T);
+        Vector v_back = forward.velocity();
+        v_back *= -1.;
+        EnergyStepping backward(*argon.system, h);
+        backward.initialize(T, forward.position(), v_back);
+        EXPECT_EQ(backward.terrace_index(), forward.terrace_index());
+        while (backward.time() < 2. * T)
+          backward.step(2. * T);
+
+        Vector dq = backward.position(), dv = backward.velocity();
+        dq -= argon.q0;
+        dv += argon.v0;
+        std::cout << "h = " << h << ": " << forward.n_steps()
+                  << " steps forward, " << backward.n_steps()
+                  << " back: position error "
+                  << dq.l2_norm() / argon.q0.l2_norm() << ", velocity error "
+                  << dv.l2_norm() / argon.v0.l2_norm() << " (relative)\n";
+        EXPECT_GT(forward.n_steps(), 300u);
+        EXPECT_EQ(backward.n_steps(), forward.n_steps());
+        EXPECT_LT(dq.l2_norm() / argon.q0.l2_norm(), 1e-9);
+        EXPECT_LT(dv.l2_norm() / argon.v0.l2_norm(), 1e-9);
+      }
+  }
+
+  /** An anisotropic harmonic oscillator in the plane, V = (k1 x^2 + k2 y^2) /
+   * 2, unit mass. */
+  class Oscillator : public MechanicalSystem
+  {
+  public:
+    Oscillator()
+      : inverse_masses(2)
+    {
+      inverse_masses = 1.;
+    }
+    std::string
+    name() const override
+    {
+      return "oscillator";
+    }
+    unsigned int
+    spatial_dimension() const override
+    {
+      return 2;
+    }
+    unsigned int
+    n_dofs() const override
+    {
+      return 2;
+    }
+    const Vector &
+    inverse_mass() const override
+    {
+      return inverse_masses;
+    }
+    double
+    energy(const Vector &q) const override
+    {
+      return 0.5 * (k[0] * q[0] * q[0] + k[1] * q[1] * q[1]);
+    }
+    void
+    gradient(const Vector &q, Vector &g) const override
+    {
+      g.reinit(2);
+      g[0] = k[0] * q[0];
+      g[1] = k[1] * q[1];
+    }
+    std::unique_ptr<FreeFlight>
+    free_flight(const Vector &q, const Vector &v) const override
+    {
+      double c0 = 0., c1 = 0., c2 = 0.;
+      for (unsigned int i = 0; i < 2; ++i)
+        {
+          c0 += 0.5 * k[i] * q[i] * q[i];
+          c1 += k[i] * q[i] * v[i];
+          c2 += 0.5 * k[i] * v[i] * v[i];
+        }
+      return std::make_unique<estep::testing::PolynomialFlight>(
+        std::vector<double>{c0, c1, c2});
+    }
+    const double k[2] = {1., 2.3};
+
+  private:
+    Vector inverse_masses;
+  };
+
+  TEST(EnergyStepping, ConvergesToTheExactMotionOfAHarmonicOscillator)
+  {
+    const Oscillator oscillator;
+    Vector           q0(2), v0(2);
+    q0[0]              = 1.;
+    q0[1]              = 0.5;
+    v0[0]              = 0.3;
+    v0[1]              = -0.7;
+    const double E     = oscillator.energy(q0) + 0.5 * (v0 * v0);
+    const double T_end = 10.;
+    const auto   exact = [&](const double t, const unsigned int i) {
+      const double w = std::sqrt(oscillator.k[i]);
+      return q0[i] * std::cos(w * t) + v0[i] / w * std::sin(w * t);
+    };
+
+    // The time spent on the last terrace before a turning point is O(h^1/2), so
+    // the position error converges like h^1/2 (the seed's rate).
+    double              previous_error = 1e300;
+    std::vector<double> errors;
+    for (const double relative_step : {1e-2, 1e-3, 1e-4, 1e-5})
+      {
+        EnergyStepping stepping(oscillator, relative_step * E);
+        stepping.initialize(0., q0, v0);
+        double error = 0.;
+        for (unsigned int k = 1; k <= 100; ++k)
+          {
+            const double t = k * T_end / 100.;
+            while (stepping.time() < t)
+              stepping.step(T_end);
+            const Snapshot s = stepping.dense_output(t);
+            error =
+              std::max(error,
+                       std::hypot(s.q[0] - exact(t, 0), s.q[1] - exact(t, 1)));
+          }
+        std::cout << "h = " << relative_step << " E: " << stepping.n_steps()
+                  << " steps, maximum position error " << error << '\n';
+        EXPECT_LT(error, 0.8 * previous_error);
+        previous_error = error;
+        errors.push_back(error);
+      }
+    const double rate = std::log10(errors[1] / errors[3]) / 2.;
+    std::cout << "rate over h = 1e-3 ... 1e-5 E: " << rate << '\n';
+    EXPECT_GT(rate, 0.3);
+    EXPECT_LT(rate, 0.7);
+    EXPECT_LT(errors[3], 0.02);
+  }
+
+  /** Checks after every step that V stayed on the flight's terrace at many
+   * points. */
+  class TerraceAudit : public RunObserver
+  {
+  public:
+    TerraceAudit(const EnergyStepping &stepping)
+      : stepping(stepping)
+    {}
+
+    void
+    after_step(const TimeIntegrator &) override
+    {
+      const double a = stepping.previous_time(), b = stepping.time();
+      for (unsigned int k = 1; k < 32; ++k)
+        {
+          const Snapshot s   = stepping.dense_output(a + (b - a) * k / 32.);
+          const double   h   = stepping.energy_step();
+          const double   L   = s.terraced_potential_energy;
+          const double   tol = 1e-9 * h;
+          worst              = std::max({worst,
+                                         (L - tol) - s.potential_energy,
+                                         s.potential_energy - (L + h + tol)});
+        }
+    }
+
+    const EnergyStepping &stepping;
+    double                worst = -1e300;
+  };
+
+  TEST(EnergyStepping, NeverStepsOverALevelOfTheArgonCluster)
+  {
+    const Problem argon = estep::testing::argon_cluster();
+    for (const double h : {1e-1, 1e-2, 1e-3})
+      {
+        EnergyStepping stepping(*argon.system, h);
+        stepping.initialize(0., argon.q0, argon.v0);
+        TerraceAudit     audit(stepping);
+        TimeLoopSettings settings;
+        settings.end_time        = 2.;
+        settings.output_interval = 0.;
+        const TimeLoopResult result =
+          run_time_loop(stepping, settings, {&audit});
+        EXPECT_EQ(result.status, RunStatus::completed);
+        EXPECT_LE(audit.worst, 0.)
+          << "V left its terrace inside a flight, h = " << h;
+      }
+  }
+
+  TEST(EnergyStepping, RejectsAnInvalidEnergyStep)
+  {
+    const Problem argon = estep::testing::argon_cluster();
+    EXPECT_THROW(EnergyStepping(*argon.system, 0.), std::invalid_argument);
+    EXPECT_THROW(EnergyStepping(*argon.system, -1.), std::invalid_argument);
+  }
+
+  TEST(TimeLoop, OutputsAtTheRequestedTimesExactly)
+  {
+    const Problem  argon = estep::testing::argon_cluster();
+    EnergyStepping stepping(*argon.system, 1e-2);
+    stepping.initialize(0., argon.q0, argon.v0);
+    struct Recorder : RunObserver
+    {
+      void
+      observe(const Snapshot &s) override
+      {
+        times.push_back(s.t);
+      }
+      std::vector<double> times;
+    } recorder;
+    TimeLoopSettings settings;
+    settings.end_time        = 1.;
+    settings.output_interval = 0.3;
+    run_time_loop(stepping, settings, {&recorder});
+    ASSERT_EQ(recorder.times.size(), 5u);
+    EXPECT_EQ(recorder.times[0], 0.);
+    EXPECT_NEAR(recorder.times[1], 0.3, 1e-15);
+    EXPECT_NEAR(recorder.times[3], 0.9, 1e-15);
+    EXPECT_EQ(recorder.times[4], 1.);
+  }
+} // namespace
