@@ -10,6 +10,7 @@
 #include <estep/io/history_writer.h>
 #include <estep/io/json_writer.h>
 #include <estep/io/progress_line.h>
+#include <estep/io/step_histogram.h>
 #include <estep/io/trajectory_norm.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/explicit_newmark.h>
@@ -241,7 +242,9 @@ namespace estep
 
       HistoryWriter  history((directory / "history.csv").string(), *integrator);
       TrajectoryNorm norm;
-      std::vector<RunObserver *> observers = {&history};
+      StepHistogram  histogram;
+      histogram.set_end_time(parameters.end_time);
+      std::vector<RunObserver *> observers = {&history, &histogram};
       if (parameters.h1_norm)
         observers.push_back(&norm);
       std::unique_ptr<ProgressLine> progress;
@@ -326,6 +329,7 @@ namespace estep
         .add("angular momentum drift", angular_drift);
       if (parameters.h1_norm)
         summary.add("h1 norm", norm.h1_norm());
+      histogram.write((directory / "step_histogram.csv").string());
       write_file_atomically((directory / "summary.json").string(),
                             summary.to_string() + "\n");
 

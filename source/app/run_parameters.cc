@@ -19,7 +19,7 @@ namespace estep
       "output",
       dealii::Patterns::DirectoryName(),
       "Directory the run writes to (created if needed): parameters.prm, "
-      "history.csv and summary.json.");
+      "history.csv, step_histogram.csv and summary.json.");
 
     prm.enter_subsection("Time integration");
     {

@@ -64,7 +64,7 @@ expect 0 "completed" -- printed.prm
 
 # A run and its outputs.
 expect 0 "completed at t = 2" -- run.prm
-for file in parameters.prm history.csv summary.json; do
+for file in parameters.prm history.csv summary.json step_histogram.csv; do
   [[ -s run/$file ]] || fail "run/$file missing or empty"
 done
 grep -q '"status": "completed"' run/summary.json || fail "summary.json lacks status completed"
