@@ -7,6 +7,7 @@
 #include <estep/app/problem.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
+#include <estep/contact/ccd_command.h>
 #include <estep/io/history_writer.h>
 #include <estep/io/json_writer.h>
 #include <estep/io/progress_line.h>
@@ -29,6 +30,7 @@ namespace estep
   {
     const char *usage =
       "Usage: estep [options] INPUT.prm\n"
+      "       estep ccd FILE_OR_DIRECTORY...\n"
       "\n"
       "Energy-stepping for nonlinear elastodynamics and particle systems, on deal.II.\n"
       "\n"
@@ -41,6 +43,10 @@ namespace estep
       "                                 is a .json file, PRM otherwise\n"
       "  -s, --set \"Section/Entry=value\" override an entry of INPUT.prm (repeatable);\n"
       "                                 nested subsections are separated by '/'\n"
+      "\n"
+      "'estep ccd' runs the conservative continuous collision detection on query files\n"
+      "(CSV, the format of the Wang et al. sample queries) and prints the counts of\n"
+      "queries, positives, false negatives and false positives and the time per query.\n"
       "\n"
       "A run writes the parameters used (parameters.prm), history.csv and summary.json to\n"
       "the directory named by 'set Output directory'.\n"
@@ -358,6 +364,14 @@ namespace estep
     dealii::deal_II_exceptions::suppress_stacktrace_in_exceptions();
     try
       {
+        if (argc >= 2 && std::string(argv[1]) == "ccd")
+          {
+            if (argc == 2)
+              throw std::runtime_error(
+                "estep ccd: no query file or directory given.");
+            return contact::run_ccd_command(
+              std::vector<std::string>(argv + 2, argv + argc), std::cout);
+          }
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)
           {

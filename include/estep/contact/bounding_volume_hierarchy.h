@@ -1,0 +1,172 @@
+#ifndef estep_contact_bounding_volume_hierarchy_h
+#define estep_contact_bounding_volume_hierarchy_h
+
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace estep
+{
+  namespace contact
+  {
+    /** A surface triangle given by three point indices into a point-major
+     * coordinate vector. */
+    using TriangleIndices = std::array<unsigned int, 3>;
+
+    /** An axis-aligned box [lower, upper] (closed). */
+    struct BoundingBox
+    {
+      std::array<double, 3> lower;
+      std::array<double, 3> upper;
+
+      /** Whether the closed boxes share a point. */
+      bool
+      overlaps(const BoundingBox &other) const
+      {
+        return lower[0] <= other.upper[0] && other.lower[0] <= upper[0] &&
+               lower[1] <= other.upper[1] && other.lower[1] <= upper[1] &&
+               lower[2] <= other.upper[2] && other.lower[2] <= upper[2];
+      }
+    };
+
+    /**
+     * Broad phase over the triangles of a surface: a bounding volume hierarchy
+     * (binary tree of axis-aligned boxes, median split along the longest axis
+     * of the centroids, at most four triangles per leaf) that finds all pairs
+     * of triangles whose boxes overlap, except pairs that share a vertex
+     * (neighbours on the surface).
+     *
+     * Coordinates: q is point-major, point i at q[3i], q[3i + 1], q[3i + 2].
+     * Boxes are computed from the vertex coordinates (min and max are exact)
+     * and then enlarged by a user margin; coordinates computed by the class
+     * (the end of a free flight, q + s v) are rounded outward, so a box always
+     * holds the exact geometric object. The tree's topology is built once
+     * (build()) and its boxes updated as the mesh moves (refit(), linear cost);
+     * rebuild when the motion has been large, since refitted boxes grow loose.
+     *
+     * Not thread-safe for concurrent updates; queries on a fixed tree are
+     * const.
+     */
+    class BoundingVolumeHierarchy
+    {
+    public:
+      /**
+       * @p triangles are vertex-index triples; every index must be below
+       * n_points of the coordinate vectors passed later (checked there,
+       * std::invalid_argument otherwise).
+       */
+      explicit BoundingVolumeHierarchy(std::vector<TriangleIndices> triangles);
+
+      /** Build the tree for the configuration q (size n) with boxes enlarged by
+       * margin. */
+      void
+      build(const double *q, const std::size_t n, const double margin = 0.);
+
+      /**
+       * Build the tree for a free flight: each triangle's box holds the
+       * triangle at every q + s v with 0 <= s <= s_max (the box of its
+       * positions at s = 0 and s = s_max, since points move on straight lines),
+       * enlarged by margin.
+       */
+      void
+      build_swept(const double     *q,
+                  const double     *v,
+                  const std::size_t n,
+                  const double      s_max,
+                  const double      margin = 0.);
+
+      /** Recompute the boxes for a new configuration, keeping the tree (same as
+       * build's). */
+      void
+      refit(const double *q, const std::size_t n, const double margin = 0.);
+
+      /** Recompute the boxes for a new free flight, keeping the tree. */
+      void
+      refit_swept(const double     *q,
+                  const double     *v,
+                  const std::size_t n,
+                  const double      s_max,
+                  const double      margin = 0.);
+
+      /**
+       * All pairs (i, j), i < j, of triangle numbers whose boxes overlap and
+       * which share no vertex index. Replaces the content of @p pairs; the
+       * order is unspecified.
+       */
+      void
+      find_pairs(
+        std::vector<std::pair<unsigned int, unsigned int>> &pairs) const;
+
+      /** Whether build() or build_swept() has been called. */
+      bool
+      is_built() const
+      {
+        return !nodes.empty() || triangles.empty();
+      }
+
+      /** Number of triangles. */
+      std::size_t
+      n_triangles() const
+      {
+        return triangles.size();
+      }
+
+      /** The triangles as passed to the constructor. */
+      const std::vector<TriangleIndices> &
+      get_triangles() const
+      {
+        return triangles;
+      }
+
+      /** Box of triangle i as last computed. */
+      const BoundingBox &
+      triangle_box(const unsigned int i) const
+      {
+        return boxes[i];
+      }
+
+    private:
+      struct Node
+      {
+        BoundingBox box;
+        // Leaf: triangles order[begin, end), first_child = 0. Inner: children
+        // first_child and first_child + 1 (never 0, the root).
+        unsigned int begin, end, first_child;
+      };
+
+      void
+      compute_boxes(const double     *q,
+                    const double     *v,
+                    const std::size_t n,
+                    const double      s_max,
+                    const double      margin);
+
+      void
+      build_tree();
+
+      void
+      refit_tree();
+
+      std::vector<TriangleIndices> triangles;
+      unsigned int                 max_index;
+      std::vector<BoundingBox>     boxes;
+      std::vector<unsigned int>    order;
+      std::vector<Node>            nodes;
+      std::vector<BoundingBox>     ordered_boxes;
+      std::vector<TriangleIndices> ordered_triangles;
+    };
+
+    /** Whether two triangles share a vertex index. */
+    inline bool
+    share_vertex(const TriangleIndices &a, const TriangleIndices &b)
+    {
+      for (const unsigned int i : a)
+        if (i == b[0] || i == b[1] || i == b[2])
+          return true;
+      return false;
+    }
+  } // namespace contact
+} // namespace estep
+
+#endif

@@ -1,0 +1,167 @@
+#ifndef estep_fem_elastic_body_h
+#define estep_fem_elastic_body_h
+
+#include <estep/fem/p1_cell_data.h>
+#include <estep/materials/material.h>
+#include <estep/systems/mechanical_system.h>
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+  template <int dim, int spacedim>
+  class DoFHandler;
+} // namespace dealii
+
+namespace estep
+{
+  class ElasticFreeFlight;
+
+  /**
+   * A hyperelastic body discretised by linear tetrahedra (P1), as a
+   * MechanicalSystem.
+   *
+   * Coordinates q are the current positions of the mesh vertices ("points"),
+   * point-major: q[3 i + c] is component c of point i, with points numbered as
+   * the DoFHandler of FESystem<3>(FE_SimplexP<3>(1), 3) numbers its vertex dofs
+   * (see P1CellData; dof_handler() gives that DoFHandler for output). The
+   * potential energy is
+   * @f[ V(q) = \sum_e |\Omega_e| \, W(F_e(q)), @f]
+   * with W the strain energy density of the Material relative to the undeformed
+   * state (so the reference configuration has V = 0), F_e the (constant)
+   * deformation gradient of cell e and |Omega_e| its reference volume; V =
+   * +infinity as soon as one det F_e <= 0. The mass is the lumped (row-sum)
+   * mass of density rho: rho |Omega_e| / 4 per vertex and cell, computed with
+   * deal.II FEValues (FE_SimplexP, QGaussSimplex, MappingFE) once and checked
+   * against the geometric formula.
+   *
+   * The constructor copies the mesh and precomputes P1CellData; energy(),
+   * gradient() and free_flight() then loop over plain arrays and never call
+   * deal.II.
+   *
+   * Not thread-safe: energy() uses an internal scratch array.
+   */
+  class ElasticBody : public MechanicalSystem
+  {
+  public:
+    /**
+     * The body occupying the tetrahedral mesh @p tria in its reference
+     * (undeformed) state, of material @p material and mass density @p density >
+     * 0 (mass per unit reference volume). Throws dealii::ExcMessage if the mesh
+     * has non-tetrahedral, inverted or degenerate cells.
+     */
+    ElasticBody(const dealii::Triangulation<3, 3> &tria,
+                std::shared_ptr<const Material>    material,
+                const double                       density,
+                const std::string                 &name = "elastic body");
+
+    ~ElasticBody() override;
+
+    std::string
+    name() const override;
+
+    /** Always 3. */
+    unsigned int
+    spatial_dimension() const override;
+
+    /** 3 n_vertices(). */
+    unsigned int
+    n_dofs() const override;
+
+    const Vector &
+    inverse_mass() const override;
+
+    double
+    energy(const Vector &q) const override;
+
+    void
+    gradient(const Vector &q, Vector &g) const override;
+
+    /** An ElasticFreeFlight (see there) of this body along q + s v. */
+    std::unique_ptr<FreeFlight>
+    free_flight(const Vector &q, const Vector &v) const override;
+
+    /** The same as free_flight(), with its concrete type. */
+    std::unique_ptr<ElasticFreeFlight>
+    make_free_flight(const Vector &q, const Vector &v) const;
+
+    /** Number of tetrahedra. */
+    unsigned int
+    n_cells() const;
+
+    /** Number of vertices (points). */
+    unsigned int
+    n_vertices() const;
+
+    /** Reference volume of the body. */
+    double
+    volume() const;
+
+    /** Total mass. */
+    double
+    mass() const;
+
+    /** Density (mass per unit reference volume). */
+    double
+    density() const;
+
+    /** The lumped mass of point @p i. */
+    double
+    point_mass(const unsigned int i) const;
+
+    /** The reference (undeformed) configuration: q = X. */
+    Vector
+    reference_configuration() const;
+
+    /** The index of the point nearest to @p X in the reference configuration.
+     */
+    unsigned int
+    closest_point(const std::array<double, 3> &X) const;
+
+    /**
+     * The velocity field of a rigid motion, v_i = v0 + omega x (x_i - centre),
+     * evaluated at the positions @p q (e.g. reference_configuration()).
+     */
+    Vector
+    rigid_velocity(const Vector                &q,
+                   const std::array<double, 3> &v0,
+                   const std::array<double, 3> &omega,
+                   const std::array<double, 3> &centre) const;
+
+    /** The material. */
+    const Material &
+    material() const;
+
+    /** The precomputed per-cell data of the hot loops. */
+    const P1CellData &
+    cell_data() const;
+
+    /** The body's own copy of the mesh. */
+    const dealii::Triangulation<3, 3> &
+    triangulation() const;
+
+    /** The DoFHandler of FESystem<3>(FE_SimplexP<3>(1), 3) whose dof numbering
+     * q follows. */
+    const dealii::DoFHandler<3, 3> &
+    dof_handler() const;
+
+  private:
+    struct DealIIObjects;
+
+    std::string                     body_name;
+    std::shared_ptr<const Material> body_material;
+    double                          rho;
+    std::unique_ptr<DealIIObjects>  dealii_objects;
+    P1CellData                      data;
+    double                          total_volume;
+    Vector                          inv_mass;
+    /** Scratch of energy(): J per cell. */
+    mutable std::vector<double> scratch_J;
+  };
+} // namespace estep
+
+#endif

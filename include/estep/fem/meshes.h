@@ -1,0 +1,55 @@
+#ifndef estep_fem_meshes_h
+#define estep_fem_meshes_h
+
+#include <array>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+}
+
+namespace estep
+{
+  /**
+   * The seed's cube mesh: the box [lower, upper] (the unit cube by default)
+   * divided into an n x n x n grid of hexahedra, each split into 24 tetrahedra
+   * by split_hexahedra_into_24_tetrahedra(). For n = 8: 12,288 cells and 2,969
+   * vertices (729 grid points + 1,728 face centres + 512 hexahedron centres).
+   * @p tria must be empty. Throws (dealii::ExcMessage) if n = 0 or the box is
+   * empty.
+   */
+  void
+  make_seed_cube_mesh(dealii::Triangulation<3, 3> &tria,
+                      const unsigned int           n_subdivisions,
+                      const std::array<double, 3> &lower = {{0., 0., 0.}},
+                      const std::array<double, 3> &upper = {{1., 1., 1.}});
+
+  /**
+   * Split every hexahedron of @p hex_tria (a mesh of hexahedra only, used on
+   * its coarsest level) into 24 tetrahedra: a new vertex at the centre of each
+   * face (mean of its four vertices; shared by the two hexahedra of an interior
+   * face) and one at the centre of each hexahedron (mean of its eight
+   * vertices); each tetrahedron is (hexahedron centre, face centre, the two
+   * vertices of one edge of that face), ordered to have positive volume.
+   * Material ids are inherited; boundary ids and manifolds are not. @p tet_tria
+   * must be empty. This differs from deal.II's
+   * GridGenerator::convert_hypercube_to_simplex_mesh (which gives 2,457
+   * vertices on the 8^3 cube).
+   */
+  void
+  split_hexahedra_into_24_tetrahedra(
+    const dealii::Triangulation<3, 3> &hex_tria,
+    dealii::Triangulation<3, 3>       &tet_tria);
+
+  /**
+   * Check that @p tria is a non-empty mesh of tetrahedra only, each with a
+   * positive volume (vertex order as deal.II's reference tetrahedron) larger
+   * than 1e-12 times the cube of its longest edge. Throws dealii::ExcMessage
+   * naming the first offending cell (index, vertices) otherwise.
+   */
+  void
+  check_tetrahedral_mesh(const dealii::Triangulation<3, 3> &tria);
+} // namespace estep
+
+#endif

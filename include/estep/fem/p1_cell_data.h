@@ -1,0 +1,52 @@
+#ifndef estep_fem_p1_cell_data_h
+#define estep_fem_p1_cell_data_h
+
+#include <array>
+#include <vector>
+
+namespace estep
+{
+  /**
+   * What the hot loops of ElasticBody need about a mesh of linear (P1)
+   * tetrahedra, computed once from deal.II and stored as plain arrays
+   * (structure of arrays, one entry per cell).
+   *
+   * Points are the mesh vertices, numbered as the DoFHandler of
+   * FESystem<3>(FE_SimplexP<3>(1), 3) numbers its vertex degrees of freedom:
+   * component c of point i is degree of freedom 3 i + c, so a coordinate vector
+   * of the body is also a deal.II finite-element vector (positions,
+   * point-major).
+   *
+   * For cell e with points p_0..p_3 (in deal.II's vertex order) and reference
+   * positions X_0..X_3, let D_m = [X_1 - X_0 | X_2 - X_0 | X_3 - X_0] and B =
+   * D_m^{-1}. Row a of B is the reference gradient dN_{a+1}/dX of the shape
+   * function of vertex a + 1, and dN_0/dX = -sum of the rows. The deformation
+   * gradient of positions x is F = [x_1 - x_0 | x_2 - x_0 | x_3 - x_0] B.
+   */
+  struct P1CellData
+  {
+    /** Number of cells (tetrahedra). */
+    unsigned int n_cells = 0;
+
+    /** Number of points (vertices). */
+    unsigned int n_points = 0;
+
+    /** point[a][e]: point index of vertex a of cell e. */
+    std::array<std::vector<unsigned int>, 4> point;
+
+    /** shape_gradient[3 a + j][e] = B_aj = dN_{a+1}/dX_j on cell e (units
+     * 1/length). */
+    std::array<std::vector<double>, 9> shape_gradient;
+
+    /** Reference volume of each cell (positive). */
+    std::vector<double> volume;
+
+    /** Reference positions, point-major: X[3 i + c]. */
+    std::vector<double> reference_position;
+
+    /** Lumped mass of each point (row sums of the consistent mass matrix). */
+    std::vector<double> lumped_mass;
+  };
+} // namespace estep
+
+#endif

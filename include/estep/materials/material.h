@@ -1,0 +1,139 @@
+#ifndef estep_materials_material_h
+#define estep_materials_material_h
+
+#include <deal.II/base/tensor.h>
+
+#include <estep/base/interval.h>
+#include <estep/systems/free_flight.h>
+
+#include <cstddef>
+#include <string>
+
+namespace estep
+{
+  /**
+   * A hyperelastic material whose strain energy density (per unit reference
+   * volume) has the split form
+   * @f[ W(F) = f(J) + \frac{c}{2} \mathrm{tr}(F^T F) - W_0, \qquad J = \det F,
+   * @f] with a volumetric function f (+infinity for J <= 0), a constant c >= 0
+   * (quadratic_modulus()) and the constant W_0 = f(1) + 3c/2 that makes W(I) =
+   * 0. The compressible neo-Hookean material (NeoHookean) is the standard
+   * member of this family; other volumetric functions (e.g. kappa/2 (J - 1)^2 -
+   * mu log J) give further ones.
+   *
+   * Why this form: along a free flight of P1 tetrahedra F(s) = F + s G, so J(s)
+   * is a cubic and tr(F^T F)(s) a quadratic in s. The quadratic parts of all
+   * elements add up to one global quadratic and only f needs per-element work.
+   * ElasticBody therefore asks the material for f only, through the batch
+   * functions below: one virtual call per sweep over all cells, never one per
+   * cell. The defaults of the batch functions loop over the scalar virtual
+   * functions (correct, slower); a material that is used for long runs
+   * overrides them with tight loops (NeoHookean does, with a vectorised
+   * logarithm).
+   *
+   * To add a material: derive from this class and implement the six pure
+   * virtual functions. The range functions must be rigorous: they must contain
+   * every value that volumetric_energy() and volumetric_derivative() return for
+   * J in the interval, round-off included (widen the result by a few ulps when
+   * in doubt).
+   *
+   * Units: W and f are energies per unit reference volume, c is a stress (same
+   * units).
+   */
+  class Material
+  {
+  public:
+    virtual ~Material() = default;
+
+    /** A short name for output. */
+    virtual std::string
+    name() const = 0;
+
+    /** The constant c of the quadratic part c/2 tr(F^T F) (mu0 for
+     * neo-Hookean). */
+    virtual double
+    quadratic_modulus() const = 0;
+
+    /** f(J); +infinity for J <= 0. */
+    virtual double
+    volumetric_energy(const double J) const = 0;
+
+    /** f'(J) for J > 0. */
+    virtual double
+    volumetric_derivative(const double J) const = 0;
+
+    /**
+     * An interval holding f(J) for every J in @p J (rigorous, see the class
+     * documentation). J.lower may be <= 0: then the upper bound is +infinity.
+     */
+    virtual Interval
+    volumetric_energy_range(const Interval &J) const = 0;
+
+    /**
+     * An interval holding f'(J) for every J in @p J (rigorous). J.lower may be
+     * <= 0: then the result may be unbounded.
+     */
+    virtual Interval
+    volumetric_derivative_range(const Interval &J) const = 0;
+
+    /** W_0 = f(1) + 3c/2, the energy density of the undeformed state that is
+     * subtracted. */
+    double
+    reference_energy_density() const;
+
+    /** W(F) - W(I) for a full deformation gradient; +infinity if det F <= 0. */
+    double
+    energy_density(const dealii::Tensor<2, 3> &F) const;
+
+    /** The first Piola-Kirchhoff stress P = dW/dF = f'(J) J F^-T + c F. det F
+     * must be > 0. */
+    dealii::Tensor<2, 3>
+    first_piola_stress(const dealii::Tensor<2, 3> &F) const;
+
+    /**
+     * @name Batch kernels: one call per sweep over all cells.
+     * @{
+     */
+
+    /** Sum over i < n of w[i] f(J[i]); +infinity if any J[i] <= 0. */
+    virtual double
+    sum_volumetric_energy(const double     *J,
+                          const double     *w,
+                          const std::size_t n) const;
+
+    /**
+     * value = sum w[i] f(J[i]) and derivative = sum w[i] f'(J[i]) dJ[i] (the
+     * slope along a line where dJ[i] is the rate of change of J[i]); value is
+     * +infinity if any J[i] <= 0.
+     */
+    virtual LineValue
+    sum_volumetric_energy_and_slope(const double     *J,
+                                    const double     *dJ,
+                                    const double     *w,
+                                    const std::size_t n) const;
+
+    /** df[i] = f'(J[i]) for i < n; all J[i] > 0. */
+    virtual void
+    volumetric_derivatives(const double     *J,
+                           double           *df,
+                           const std::size_t n) const;
+
+    /**
+     * Rigorous enclosures of sum w[i] f(J_i) and of sum w[i] f'(J_i) dJ_i over
+     * all J_i in [J_lo[i], J_hi[i]] and dJ_i in [dJ_lo[i], dJ_hi[i]] (w[i] >=
+     * 0). The enclosures also hold the values computed by
+     * sum_volumetric_energy() and sum_volumetric_energy_and_slope() (in any
+     * summation order) for such arguments.
+     */
+    virtual LineEnclosure
+    enclose_volumetric_sum(const double     *J_lo,
+                           const double     *J_hi,
+                           const double     *dJ_lo,
+                           const double     *dJ_hi,
+                           const double     *w,
+                           const std::size_t n) const;
+    /** @} */
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,290 @@
+#include <estep/contact/penalty_contact.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace estep
+{
+  namespace contact
+  {
+    namespace
+    {
+      inline Point3
+      minus(const Point3 &a, const Point3 &b)
+      {
+        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
+      }
+
+      inline Point3
+      cross(const Point3 &a, const Point3 &b)
+      {
+        return {{a[1] * b[2] - a[2] * b[1],
+                 a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]}};
+      }
+
+      inline double
+      dot(const Point3 &a, const Point3 &b)
+      {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      }
+
+      // gradient += w^T dX/d(vertices) for the end point X produced by source
+      // s.
+      void
+      add_end_point_gradient(const SegmentEndPoint &s,
+                             const Triangle3       &T0,
+                             const Triangle3       &T1,
+                             const Point3          &w,
+                             double                *gradient)
+      {
+        const unsigned int ke = s.edge_triangle, kf = 1 - ke;
+        const Triangle3   &E = (ke == 0) ? T0 : T1;
+        const Triangle3   &F = (kf == 0) ? T0 : T1;
+        const Point3      &a = E[s.edge[0]], &b = E[s.edge[1]];
+        const Point3       f1 = minus(F[1], F[0]), f2 = minus(F[2], F[0]);
+        const Point3       n  = cross(f1, f2);
+        const Point3       ap = minus(a, F[0]), bp = minus(b, F[0]);
+        const double       da = dot(n, ap), db = dot(n, bp);
+        const double       denom = da - db;
+        if (denom == 0.)
+          return; // cannot happen for a generating edge
+        const double t    = da / denom;
+        const double c    = dot(w, minus(b, a));
+        const double ct_a = -c * db / (denom * denom);
+        const double ct_b = c * da / (denom * denom);
+
+        double *ga = gradient + 9 * ke + 3 * s.edge[0];
+        double *gb = gradient + 9 * ke + 3 * s.edge[1];
+        double *gp = gradient + 9 * kf;
+        double *gq = gp + 3, *gr = gp + 6;
+        Point3  m;
+        for (unsigned int k = 0; k < 3; ++k)
+          m[k] = ct_a * ap[k] + ct_b * bp[k];
+        const Point3 dq = cross(f2, m), dr = cross(m, f1);
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            ga[k] += w[k] * (1. - t) + ct_a * n[k];
+            gb[k] += w[k] * t + ct_b * n[k];
+            gp[k] += -(ct_a + ct_b) * n[k] - dq[k] - dr[k];
+            gq[k] += dq[k];
+            gr[k] += dr[k];
+          }
+      }
+
+      inline void
+      gather(const double *q, const TriangleIndices &t, Triangle3 &T)
+      {
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int k = 0; k < 3; ++k)
+            T[v][k] = q[3 * t[v] + k];
+      }
+    } // namespace
+
+
+
+    double
+    squared_intersection_length(const Triangle3        &T0,
+                                const Triangle3        &T1,
+                                std::array<double, 18> *gradient)
+    {
+      if (gradient != nullptr)
+        gradient->fill(0.);
+      const TriangleIntersection r = intersect_triangles(T0, T1);
+      if (r.kind != IntersectionKind::segment)
+        return 0.;
+      const Point3 d = minus(r.A, r.B);
+      if (gradient != nullptr)
+        {
+          const Point3 w = {{2. * d[0], 2. * d[1], 2. * d[2]}};
+          add_end_point_gradient(r.source[0], T0, T1, w, gradient->data());
+          add_end_point_gradient(
+            r.source[1], T0, T1, {{-w[0], -w[1], -w[2]}}, gradient->data());
+        }
+      return dot(d, d);
+    }
+
+
+
+    PenaltyContact::PenaltyContact(std::vector<TriangleIndices> triangles,
+                                   const double                 eps)
+      : eps(eps)
+      , bvh(std::move(triangles))
+    {
+      if (!(eps > 0.) || !std::isfinite(eps))
+        throw std::invalid_argument(
+          "PenaltyContact: the penalty parameter eps must be "
+          "positive and finite, got " +
+          std::to_string(eps));
+      const auto &t = bvh.get_triangles();
+      for (std::size_t i = 0; i < t.size(); ++i)
+        if (t[i][0] == t[i][1] || t[i][1] == t[i][2] || t[i][0] == t[i][2])
+          throw std::invalid_argument("PenaltyContact: surface triangle " +
+                                      std::to_string(i) +
+                                      " repeats a vertex index");
+    }
+
+
+
+    double
+    PenaltyContact::evaluate(const double     *q,
+                             const std::size_t n,
+                             double           *g,
+                             unsigned int     *count) const
+    {
+      if (!bvh.is_built() || ++n_refits >= rebuild_every)
+        {
+          bvh.build(q, n);
+          n_refits = 0;
+        }
+      else
+        bvh.refit(q, n);
+      bvh.find_pairs(pairs);
+
+      const auto &tris  = bvh.get_triangles();
+      double      total = 0.;
+      Triangle3   T0, T1;
+      for (const auto &[i, j] : pairs)
+        {
+          gather(q, tris[i], T0);
+          gather(q, tris[j], T1);
+          std::array<double, 18> grad;
+          const double           gap =
+            squared_intersection_length(T0, T1, g != nullptr ? &grad : nullptr);
+          if (gap == 0.)
+            continue;
+          total += gap;
+          if (count != nullptr)
+            ++*count;
+          if (g != nullptr)
+            for (unsigned int v = 0; v < 3; ++v)
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  g[3 * tris[i][v] + k] += grad[3 * v + k] / (2. * eps);
+                  g[3 * tris[j][v] + k] += grad[9 + 3 * v + k] / (2. * eps);
+                }
+        }
+      return total / (2. * eps);
+    }
+
+
+
+    double
+    PenaltyContact::energy(const double *q, const std::size_t n) const
+    {
+      return evaluate(q, n, nullptr, nullptr);
+    }
+
+
+
+    double
+    PenaltyContact::add_gradient(const double     *q,
+                                 const std::size_t n,
+                                 double           *g) const
+    {
+      return evaluate(q, n, g, nullptr);
+    }
+
+
+
+    unsigned int
+    PenaltyContact::n_intersecting_pairs(const double     *q,
+                                         const std::size_t n) const
+    {
+      unsigned int count = 0;
+      evaluate(q, n, nullptr, &count);
+      return count;
+    }
+
+
+
+    PenaltyContact::Flight
+    PenaltyContact::flight(const double     *q,
+                           const double     *v,
+                           const std::size_t n,
+                           const double      s_max) const
+    {
+      if (!(s_max >= 0.) || !std::isfinite(s_max))
+        throw std::invalid_argument(
+          "PenaltyContact::flight: s_max must be finite and >= 0");
+      Flight f;
+      f.contact = this;
+      f.q.assign(q, q + n);
+      f.v.assign(v, v + n);
+      f.s_max = s_max;
+      BoundingVolumeHierarchy swept(bvh.get_triangles());
+      swept.build_swept(q, v, n, s_max);
+      swept.find_pairs(f.pairs);
+      return f;
+    }
+
+
+
+    double
+    PenaltyContact::Flight::evaluate(const double  s,
+                                     double       *derivative,
+                                     unsigned int *count) const
+    {
+      const auto &tris  = contact->get_triangles();
+      double      total = 0., slope = 0.;
+      Triangle3   T[2];
+      for (const auto &[i, j] : pairs)
+        {
+          const TriangleIndices *t[2] = {&tris[i], &tris[j]};
+          for (unsigned int m = 0; m < 2; ++m)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int index = 3 * (*t[m])[a] + k;
+                  T[m][a][k]               = q[index] + s * v[index];
+                }
+          std::array<double, 18> grad;
+          const double           gap = squared_intersection_length(
+            T[0], T[1], derivative != nullptr ? &grad : nullptr);
+          if (gap == 0.)
+            continue;
+          total += gap;
+          if (count != nullptr)
+            ++*count;
+          if (derivative != nullptr)
+            for (unsigned int m = 0; m < 2; ++m)
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int k = 0; k < 3; ++k)
+                  slope += grad[9 * m + 3 * a + k] * v[3 * (*t[m])[a] + k];
+        }
+      const double scale = 1. / (2. * contact->eps);
+      if (derivative != nullptr)
+        *derivative = slope * scale;
+      return total * scale;
+    }
+
+
+
+    double
+    PenaltyContact::Flight::value(const double s) const
+    {
+      return evaluate(s, nullptr, nullptr);
+    }
+
+
+
+    std::pair<double, double>
+    PenaltyContact::Flight::value_and_derivative(const double s) const
+    {
+      double       d     = 0.;
+      const double value = evaluate(s, &d, nullptr);
+      return {value, d};
+    }
+
+
+
+    unsigned int
+    PenaltyContact::Flight::n_intersecting_pairs(const double s) const
+    {
+      unsigned int count = 0;
+      evaluate(s, nullptr, &count);
+      return count;
+    }
+  } // namespace contact
+} // namespace estep

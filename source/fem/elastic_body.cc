@@ -1,0 +1,390 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/elastic_free_flight.h>
+#include <estep/fem/meshes.h>
+
+#include "p1_kernels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace estep
+{
+  struct ElasticBody::DealIIObjects
+  {
+    dealii::Triangulation<3, 3> tria;
+    dealii::FESystem<3>         fe{dealii::FE_SimplexP<3>(1), 3};
+    dealii::DoFHandler<3, 3>    dof_handler;
+  };
+
+  ElasticBody::ElasticBody(const dealii::Triangulation<3, 3> &tria,
+                           std::shared_ptr<const Material>    material,
+                           const double                       density,
+                           const std::string                 &name)
+    : body_name(name)
+    , body_material(std::move(material))
+    , rho(density)
+    , dealii_objects(std::make_unique<DealIIObjects>())
+    , total_volume(0.)
+  {
+    AssertThrow(body_material != nullptr,
+                dealii::ExcMessage("ElasticBody: no material given."));
+    AssertThrow(density > 0. && std::isfinite(density),
+                dealii::ExcMessage(
+                  "ElasticBody: the density must be positive (got " +
+                  std::to_string(density) + ")."));
+    check_tetrahedral_mesh(tria);
+
+    auto &objects = *dealii_objects;
+    objects.tria.copy_triangulation(tria);
+    objects.dof_handler.reinit(objects.tria);
+    objects.dof_handler.distribute_dofs(objects.fe);
+
+    const auto &fe = objects.fe;
+    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+      AssertThrow(fe.system_to_component_index(k).first == k % 3 &&
+                    fe.system_to_component_index(k).second == k / 3,
+                  dealii::ExcInternalError());
+
+    data.n_cells  = objects.tria.n_active_cells();
+    data.n_points = objects.dof_handler.n_dofs() / 3;
+    for (auto &v : data.point)
+      v.resize(data.n_cells);
+    for (auto &v : data.shape_gradient)
+      v.resize(data.n_cells);
+    data.volume.resize(data.n_cells);
+    data.reference_position.assign(3 * data.n_points, 0.);
+    data.lumped_mass.assign(data.n_points, 0.);
+
+    // Geometry: points, B = D_m^-1, volume.
+    std::vector<dealii::types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : objects.dof_handler.active_cell_iterators())
+      {
+        const unsigned int e = cell->active_cell_index();
+        cell->get_dof_indices(dofs);
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            const unsigned int p = dofs[3 * a] / 3;
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                AssertThrow(dofs[3 * a + c] == 3 * p + c,
+                            dealii::ExcInternalError());
+                data.reference_position[3 * p + c] = cell->vertex(a)[c];
+              }
+            data.point[a][e] = p;
+          }
+        dealii::Tensor<2, 3> Dm;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int i = 0; i < 3; ++i)
+            Dm[i][a] = cell->vertex(a + 1)[i] - cell->vertex(0)[i];
+        const double det             = dealii::determinant(Dm);
+        data.volume[e]               = det / 6.;
+        const dealii::Tensor<2, 3> B = dealii::invert(Dm);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int j = 0; j < 3; ++j)
+            data.shape_gradient[3 * a + j][e] = B[a][j];
+        total_volume += data.volume[e];
+      }
+
+    // Lumped mass with deal.II (row sums of the consistent mass of the scalar
+    // P1 element), checked against the geometry above: volume, rho |Omega_e| /
+    // 4 and the gradients.
+    const dealii::FE_SimplexP<3>   scalar_fe(1);
+    const dealii::MappingFE<3>     mapping(scalar_fe);
+    const dealii::QGaussSimplex<3> quadrature(2);
+    dealii::FEValues<3>            fe_values(mapping,
+                                  scalar_fe,
+                                  quadrature,
+                                  dealii::update_values |
+                                    dealii::update_gradients |
+                                    dealii::update_JxW_values);
+    for (const auto &cell : objects.tria.active_cell_iterators())
+      {
+        const unsigned int e = cell->active_cell_index();
+        fe_values.reinit(cell);
+        double volume = 0.;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          volume += fe_values.JxW(q);
+        const double tolerance = 1e-10;
+        AssertThrow(std::abs(volume - data.volume[e]) <=
+                      tolerance * data.volume[e],
+                    dealii::ExcMessage(
+                      "ElasticBody: the volume of cell " + std::to_string(e) +
+                      " from FEValues disagrees with the geometry."));
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            double row_sum = 0.;
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              for (unsigned int b = 0; b < 4; ++b)
+                row_sum += density * fe_values.shape_value(a, q) *
+                           fe_values.shape_value(b, q) * fe_values.JxW(q);
+            AssertThrow(std::abs(row_sum - 0.25 * density * data.volume[e]) <=
+                          tolerance * density * data.volume[e],
+                        dealii::ExcMessage(
+                          "ElasticBody: lumped mass check failed on cell " +
+                          std::to_string(e) + "."));
+            data.lumped_mass[data.point[a][e]] += row_sum;
+            if (a > 0)
+              for (unsigned int j = 0; j < 3; ++j)
+                {
+                  const double B_aj = data.shape_gradient[3 * (a - 1) + j][e];
+                  AssertThrow(std::abs(fe_values.shape_grad(a, 0)[j] - B_aj) <=
+                                tolerance * (1. + std::abs(B_aj)) *
+                                  std::cbrt(1. / data.volume[e]),
+                              dealii::ExcMessage(
+                                "ElasticBody: shape gradient check failed "
+                                "on cell " +
+                                std::to_string(e) + "."));
+                }
+          }
+      }
+
+    inv_mass.reinit(3 * data.n_points);
+    for (unsigned int i = 0; i < data.n_points; ++i)
+      {
+        AssertThrow(data.lumped_mass[i] > 0.,
+                    dealii::ExcMessage(
+                      "ElasticBody: the mesh has a vertex that belongs to no "
+                      "cell (zero mass)."));
+        for (unsigned int c = 0; c < 3; ++c)
+          inv_mass[3 * i + c] = 1. / data.lumped_mass[i];
+      }
+    scratch_J.resize(data.n_cells);
+  }
+
+  ElasticBody::~ElasticBody() = default;
+
+  std::string
+  ElasticBody::name() const
+  {
+    return body_name;
+  }
+
+  unsigned int
+  ElasticBody::spatial_dimension() const
+  {
+    return 3;
+  }
+
+  unsigned int
+  ElasticBody::n_dofs() const
+  {
+    return 3 * data.n_points;
+  }
+
+  const Vector &
+  ElasticBody::inverse_mass() const
+  {
+    return inv_mass;
+  }
+
+  double
+  ElasticBody::energy(const Vector &q) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    const double *x      = q.data();
+    double        square = 0.;
+    for (unsigned int e = 0; e < data.n_cells; ++e)
+      {
+        double F[9], C[9];
+        internal::deformation_gradient(x, data, e, F);
+        internal::cofactor(F, C);
+        scratch_J[e] = internal::determinant(F, C);
+        square += data.volume[e] * (internal::contract(F, F) - 3.);
+      }
+    const double volumetric =
+      body_material->sum_volumetric_energy(scratch_J.data(),
+                                           data.volume.data(),
+                                           data.n_cells);
+    if (!std::isfinite(volumetric))
+      return std::numeric_limits<double>::infinity();
+    // W - W_0 = f(J) - f(1) + c/2 (|F|^2 - 3), summed so that the undeformed
+    // state gives 0 up to round-off of the cells, not of the totals.
+    return volumetric + 0.5 * body_material->quadratic_modulus() * square -
+           body_material->volumetric_energy(1.) * total_volume;
+  }
+
+  void
+  ElasticBody::gradient(const Vector &q, Vector &g) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    g.reinit(n_dofs());
+    const double *x = q.data();
+    double       *y = g.data();
+    const double  c = body_material->quadratic_modulus();
+    // Chunks of cells: F and cof F are kept (in L1) between the determinant
+    // pass and the assembly pass, and f'(J) is computed by one batch call per
+    // chunk.
+    constexpr unsigned int chunk = 128;
+    double                 F[chunk][9], C[chunk][9], J[chunk], df[chunk];
+    for (unsigned int begin = 0; begin < data.n_cells; begin += chunk)
+      {
+        const unsigned int m = std::min(chunk, data.n_cells - begin);
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            internal::deformation_gradient(x, data, begin + k, F[k]);
+            internal::cofactor(F[k], C[k]);
+            J[k] = internal::determinant(F[k], C[k]);
+          }
+        body_material->volumetric_derivatives(J, df, m);
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            const unsigned int e = begin + k;
+            double             P[9];
+            // P = f'(J) cof F + c F, times the volume.
+            const double dfv = df[k] * data.volume[e], cv = c * data.volume[e];
+            for (unsigned int l = 0; l < 9; ++l)
+              P[l] = dfv * C[k][l] + cv * F[k][l];
+            const unsigned int p0 = 3 * data.point[0][e];
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                const unsigned int pa = 3 * data.point[a + 1][e];
+                const double       B0 = data.shape_gradient[3 * a][e],
+                             B1       = data.shape_gradient[3 * a + 1][e],
+                             B2       = data.shape_gradient[3 * a + 2][e];
+                for (unsigned int i = 0; i < 3; ++i)
+                  {
+                    const double h =
+                      P[3 * i] * B0 + P[3 * i + 1] * B1 + P[3 * i + 2] * B2;
+                    y[pa + i] += h;
+                    y[p0 + i] -= h;
+                  }
+              }
+          }
+      }
+  }
+
+  std::unique_ptr<FreeFlight>
+  ElasticBody::free_flight(const Vector &q, const Vector &v) const
+  {
+    return make_free_flight(q, v);
+  }
+
+  std::unique_ptr<ElasticFreeFlight>
+  ElasticBody::make_free_flight(const Vector &q, const Vector &v) const
+  {
+    return std::make_unique<ElasticFreeFlight>(*this, q, v);
+  }
+
+  unsigned int
+  ElasticBody::n_cells() const
+  {
+    return data.n_cells;
+  }
+
+  unsigned int
+  ElasticBody::n_vertices() const
+  {
+    return data.n_points;
+  }
+
+  double
+  ElasticBody::volume() const
+  {
+    return total_volume;
+  }
+
+  double
+  ElasticBody::mass() const
+  {
+    double m = 0.;
+    for (const double mi : data.lumped_mass)
+      m += mi;
+    return m;
+  }
+
+  double
+  ElasticBody::density() const
+  {
+    return rho;
+  }
+
+  double
+  ElasticBody::point_mass(const unsigned int i) const
+  {
+    AssertIndexRange(i, data.n_points);
+    return data.lumped_mass[i];
+  }
+
+  Vector
+  ElasticBody::reference_configuration() const
+  {
+    Vector q(n_dofs());
+    for (unsigned int k = 0; k < n_dofs(); ++k)
+      q[k] = data.reference_position[k];
+    return q;
+  }
+
+  unsigned int
+  ElasticBody::closest_point(const std::array<double, 3> &X) const
+  {
+    unsigned int best = 0;
+    double       d2   = std::numeric_limits<double>::infinity();
+    for (unsigned int i = 0; i < data.n_points; ++i)
+      {
+        double r2 = 0.;
+        for (unsigned int c = 0; c < 3; ++c)
+          r2 += (data.reference_position[3 * i + c] - X[c]) *
+                (data.reference_position[3 * i + c] - X[c]);
+        if (r2 < d2)
+          {
+            d2   = r2;
+            best = i;
+          }
+      }
+    return best;
+  }
+
+  Vector
+  ElasticBody::rigid_velocity(const Vector                &q,
+                              const std::array<double, 3> &v0,
+                              const std::array<double, 3> &omega,
+                              const std::array<double, 3> &centre) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    Vector v(n_dofs());
+    for (unsigned int i = 0; i < data.n_points; ++i)
+      {
+        const double r[3] = {q[3 * i] - centre[0],
+                             q[3 * i + 1] - centre[1],
+                             q[3 * i + 2] - centre[2]};
+        v[3 * i]          = v0[0] + omega[1] * r[2] - omega[2] * r[1];
+        v[3 * i + 1]      = v0[1] + omega[2] * r[0] - omega[0] * r[2];
+        v[3 * i + 2]      = v0[2] + omega[0] * r[1] - omega[1] * r[0];
+      }
+    return v;
+  }
+
+  const Material &
+  ElasticBody::material() const
+  {
+    return *body_material;
+  }
+
+  const P1CellData &
+  ElasticBody::cell_data() const
+  {
+    return data;
+  }
+
+  const dealii::Triangulation<3, 3> &
+  ElasticBody::triangulation() const
+  {
+    return dealii_objects->tria;
+  }
+
+  const dealii::DoFHandler<3, 3> &
+  ElasticBody::dof_handler() const
+  {
+    return dealii_objects->dof_handler;
+  }
+} // namespace estep

@@ -1,0 +1,189 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/fem/mesh_description.h>
+#include <estep/fem/meshes.h>
+
+#include <fstream>
+
+namespace estep
+{
+  namespace
+  {
+    std::array<double, 3>
+    parse_point(const std::string &text, const std::string &entry)
+    {
+      const std::vector<std::string> parts =
+        dealii::Utilities::split_string_list(text, ',');
+      AssertThrow(parts.size() == 3,
+                  dealii::ExcMessage(
+                    "Mesh: the entry '" + entry +
+                    "' needs three comma-separated numbers, got '" + text +
+                    "'."));
+      std::array<double, 3> p;
+      for (unsigned int d = 0; d < 3; ++d)
+        p[d] = dealii::Utilities::string_to_double(parts[d]);
+      return p;
+    }
+
+    std::string
+    print_point(const std::array<double, 3> &p)
+    {
+      return dealii::Utilities::to_string(p[0]) + ", " +
+             dealii::Utilities::to_string(p[1]) + ", " +
+             dealii::Utilities::to_string(p[2]);
+    }
+
+    void
+    make_hexahedral(const MeshDescription &d, dealii::Triangulation<3, 3> &hex)
+    {
+      try
+        {
+          dealii::GridGenerator::generate_from_name_and_arguments(hex,
+                                                                  d.generator,
+                                                                  d.arguments);
+        }
+      catch (const std::exception &e)
+        {
+          AssertThrow(false,
+                      dealii::ExcMessage("Mesh: the deal.II generator '" +
+                                         d.generator + "' with arguments '" +
+                                         d.arguments +
+                                         "' failed: " + e.what()));
+        }
+      hex.refine_global(d.n_refinements);
+    }
+  } // namespace
+
+  void
+  MeshDescription::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    const MeshDescription defaults;
+    prm.declare_entry(
+      "Type",
+      defaults.type,
+      dealii::Patterns::Selection("seed cube|deal.II|deal.II 24|gmsh"),
+      "How the tetrahedral mesh is made: 'seed cube' (the seed's cube: "
+      "n^3 hexahedra of 24 tetrahedra each), 'deal.II' (a deal.II hexahedral "
+      "generator converted with convert_hypercube_to_simplex_mesh), 'deal.II 24' "
+      "(the same generator split into 24 tetrahedra per hexahedron as the seed "
+      "cube), or 'gmsh' (a .msh file of tetrahedra).");
+    prm.declare_entry(
+      "Subdivisions",
+      std::to_string(defaults.n_subdivisions),
+      dealii::Patterns::Integer(1),
+      "seed cube: number of hexahedra per direction (8 for the seed's mesh of "
+      "12,288 tetrahedra).");
+    prm.declare_entry("Lower corner",
+                      print_point(defaults.lower),
+                      dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
+                      "seed cube: lower corner of the box (length).");
+    prm.declare_entry("Upper corner",
+                      print_point(defaults.upper),
+                      dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
+                      "seed cube: upper corner of the box (length).");
+    prm.declare_entry(
+      "Generator",
+      defaults.generator,
+      dealii::Patterns::Anything(),
+      "deal.II, deal.II 24: name of the GridGenerator function, e.g. "
+      "hyper_cube, hyper_ball, subdivided_hyper_rectangle.");
+    prm.declare_entry(
+      "Generator arguments",
+      defaults.arguments,
+      dealii::Patterns::Anything(),
+      "deal.II, deal.II 24: arguments of the generator in the format of "
+      "GridGenerator::generate_from_name_and_arguments, e.g. "
+      "'0, 0, 0 : 1 : false' for hyper_ball (centre : radius : manifolds).");
+    prm.declare_entry(
+      "Refinements",
+      std::to_string(defaults.n_refinements),
+      dealii::Patterns::Integer(0, 10),
+      "deal.II, deal.II 24: global refinements of the hexahedral mesh before "
+      "its conversion to tetrahedra.");
+    prm.declare_entry(
+      "File name",
+      defaults.file_name,
+      dealii::Patterns::Anything(),
+      "gmsh: the .msh file (gmsh formats 2 or 4) of tetrahedra.");
+    prm.declare_entry(
+      "Shift",
+      print_point(defaults.shift),
+      dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
+      "Translation applied to the mesh after it is made (length).");
+  }
+
+  void
+  MeshDescription::parse_parameters(const dealii::ParameterHandler &prm)
+  {
+    type           = prm.get("Type");
+    n_subdivisions = prm.get_integer("Subdivisions");
+    lower          = parse_point(prm.get("Lower corner"), "Lower corner");
+    upper          = parse_point(prm.get("Upper corner"), "Upper corner");
+    generator      = prm.get("Generator");
+    arguments      = prm.get("Generator arguments");
+    n_refinements  = prm.get_integer("Refinements");
+    file_name      = prm.get("File name");
+    shift          = parse_point(prm.get("Shift"), "Shift");
+  }
+
+  void
+  make_mesh(const MeshDescription &d, dealii::Triangulation<3, 3> &tria)
+  {
+    if (d.type == "seed cube")
+      make_seed_cube_mesh(tria, d.n_subdivisions, d.lower, d.upper);
+    else if (d.type == "deal.II" || d.type == "deal.II 24")
+      {
+        dealii::Triangulation<3, 3> hex;
+        make_hexahedral(d, hex);
+        if (d.type == "deal.II")
+          dealii::GridGenerator::convert_hypercube_to_simplex_mesh(hex, tria);
+        else
+          {
+            // split works on the coarsest level: flatten the refined mesh
+            // first.
+            dealii::Triangulation<3, 3> flat;
+            dealii::GridGenerator::flatten_triangulation(hex, flat);
+            split_hexahedra_into_24_tetrahedra(flat, tria);
+          }
+      }
+    else if (d.type == "gmsh")
+      {
+        AssertThrow(!d.file_name.empty(),
+                    dealii::ExcMessage("Mesh: type 'gmsh' needs a file name."));
+        std::ifstream file(d.file_name);
+        AssertThrow(file.good(),
+                    dealii::ExcMessage("Mesh: cannot open the gmsh file '" +
+                                       d.file_name +
+                                       "' (missing or unreadable)."));
+        dealii::GridIn<3, 3> grid_in(tria);
+        try
+          {
+            grid_in.read_msh(file);
+          }
+        catch (const std::exception &e)
+          {
+            AssertThrow(false,
+                        dealii::ExcMessage("Mesh: cannot read the gmsh file '" +
+                                           d.file_name +
+                                           "' as a .msh mesh: " + e.what()));
+          }
+      }
+    else
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "Mesh: unknown type '" + d.type +
+                    "' (known: seed cube, deal.II, deal.II 24, gmsh)."));
+
+    if (d.shift[0] != 0. || d.shift[1] != 0. || d.shift[2] != 0.)
+      dealii::GridTools::shift(
+        dealii::Tensor<1, 3>({d.shift[0], d.shift[1], d.shift[2]}), tria);
+    check_tetrahedral_mesh(tria);
+  }
+} // namespace estep

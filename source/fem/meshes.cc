@@ -1,0 +1,169 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/point.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/reference_cell.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/fem/meshes.h>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace estep
+{
+  namespace
+  {
+    /** Six times the signed volume of the tetrahedron (x0, x1, x2, x3). */
+    double
+    six_volume(const dealii::Point<3> &x0,
+               const dealii::Point<3> &x1,
+               const dealii::Point<3> &x2,
+               const dealii::Point<3> &x3)
+    {
+      const dealii::Tensor<1, 3> a = x1 - x0, b = x2 - x0, c = x3 - x0;
+      return a[0] * (b[1] * c[2] - b[2] * c[1]) -
+             a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+  } // namespace
+
+  void
+  split_hexahedra_into_24_tetrahedra(
+    const dealii::Triangulation<3, 3> &hex_tria,
+    dealii::Triangulation<3, 3>       &tet_tria)
+  {
+    AssertThrow(
+      hex_tria.n_levels() > 0 && hex_tria.n_cells(0) > 0,
+      dealii::ExcMessage(
+        "split_hexahedra_into_24_tetrahedra: the input mesh is empty."));
+    AssertThrow(
+      tet_tria.n_levels() == 0,
+      dealii::ExcMessage(
+        "split_hexahedra_into_24_tetrahedra: the output mesh must be empty."));
+
+    // Keep the vertices of the input (unused ones are simply not referenced).
+    std::vector<dealii::Point<3>> vertices = hex_tria.get_vertices();
+    std::map<unsigned int, unsigned int>
+                                     face_centre; // face index -> new vertex
+    std::vector<dealii::CellData<3>> cells;
+    cells.reserve(24 * hex_tria.n_cells(0));
+
+    // Vertex pairs forming the four edges of a quadrilateral face (deal.II's
+    // lexicographic face vertex numbering: the cycle is 0-1-3-2).
+    static const unsigned int face_edges[4][2] = {{0, 1},
+                                                  {1, 3},
+                                                  {3, 2},
+                                                  {2, 0}};
+
+    for (const auto &cell : hex_tria.cell_iterators_on_level(0))
+      {
+        AssertThrow(
+          cell->reference_cell() == dealii::ReferenceCells::Hexahedron,
+          dealii::ExcMessage("split_hexahedra_into_24_tetrahedra: cell " +
+                             std::to_string(cell->index()) +
+                             " of the input mesh is not a hexahedron."));
+        dealii::Point<3> centre;
+        for (unsigned int v = 0; v < 8; ++v)
+          centre += cell->vertex(v);
+        centre /= 8.;
+        const unsigned int centre_index = vertices.size();
+        vertices.push_back(centre);
+
+        for (unsigned int f = 0; f < 6; ++f)
+          {
+            const auto face = cell->face(f);
+            auto       it   = face_centre.find(face->index());
+            if (it == face_centre.end())
+              {
+                dealii::Point<3> c;
+                for (unsigned int v = 0; v < 4; ++v)
+                  c += face->vertex(v);
+                c /= 4.;
+                it = face_centre.emplace(face->index(), vertices.size()).first;
+                vertices.push_back(c);
+              }
+            for (const auto &edge : face_edges)
+              {
+                dealii::CellData<3> tet(4);
+                tet.vertices[0] = centre_index;
+                tet.vertices[1] = it->second;
+                tet.vertices[2] = face->vertex_index(edge[0]);
+                tet.vertices[3] = face->vertex_index(edge[1]);
+                if (six_volume(vertices[tet.vertices[0]],
+                               vertices[tet.vertices[1]],
+                               vertices[tet.vertices[2]],
+                               vertices[tet.vertices[3]]) < 0.)
+                  std::swap(tet.vertices[2], tet.vertices[3]);
+                tet.material_id = cell->material_id();
+                cells.push_back(tet);
+              }
+          }
+      }
+    tet_tria.create_triangulation(vertices, cells, dealii::SubCellData());
+  }
+
+  void
+  make_seed_cube_mesh(dealii::Triangulation<3, 3> &tria,
+                      const unsigned int           n_subdivisions,
+                      const std::array<double, 3> &lower,
+                      const std::array<double, 3> &upper)
+  {
+    AssertThrow(n_subdivisions > 0,
+                dealii::ExcMessage(
+                  "make_seed_cube_mesh: the number of subdivisions must be "
+                  "positive."));
+    for (unsigned int d = 0; d < 3; ++d)
+      AssertThrow(upper[d] > lower[d],
+                  dealii::ExcMessage(
+                    "make_seed_cube_mesh: the box is empty (upper corner "
+                    "not above the lower corner in every direction)."));
+    dealii::Triangulation<3, 3> hex;
+    dealii::GridGenerator::subdivided_hyper_rectangle(
+      hex,
+      std::vector<unsigned int>(3, n_subdivisions),
+      dealii::Point<3>(lower[0], lower[1], lower[2]),
+      dealii::Point<3>(upper[0], upper[1], upper[2]));
+    split_hexahedra_into_24_tetrahedra(hex, tria);
+  }
+
+  void
+  check_tetrahedral_mesh(const dealii::Triangulation<3, 3> &tria)
+  {
+    AssertThrow(tria.n_active_cells() > 0,
+                dealii::ExcMessage("The mesh has no cells."));
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        AssertThrow(cell->reference_cell() ==
+                      dealii::ReferenceCells::Tetrahedron,
+                    dealii::ExcMessage(
+                      "The mesh has a cell that is not a tetrahedron (cell " +
+                      std::to_string(cell->active_cell_index()) +
+                      "); the elastic body needs a mesh of tetrahedra only "
+                      "(convert hexahedral meshes first)."));
+        double longest = 0.;
+        for (unsigned int i = 0; i < 4; ++i)
+          for (unsigned int j = i + 1; j < 4; ++j)
+            longest =
+              std::max(longest, cell->vertex(i).distance(cell->vertex(j)));
+        const double v6 = six_volume(cell->vertex(0),
+                                     cell->vertex(1),
+                                     cell->vertex(2),
+                                     cell->vertex(3));
+        if (!(v6 > 6e-12 * longest * longest * longest))
+          {
+            std::ostringstream message;
+            message << "The mesh has an "
+                    << (v6 < 0. ? "inverted" : "degenerate")
+                    << " tetrahedron: cell " << cell->active_cell_index()
+                    << " has signed volume " << v6 / 6. << " (vertices";
+            for (unsigned int i = 0; i < 4; ++i)
+              message << " (" << cell->vertex(i) << ")";
+            message
+              << "). Tetrahedra must have positive volume in deal.II's vertex order.";
+            AssertThrow(false, dealii::ExcMessage(message.str()));
+          }
+      }
+  }
+} // namespace estep

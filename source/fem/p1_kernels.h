@@ -1,0 +1,71 @@
+#ifndef estep_fem_p1_kernels_h
+#define estep_fem_p1_kernels_h
+
+// Private inline kernels of the P1 elastic body (not installed).
+
+#include <estep/fem/p1_cell_data.h>
+
+namespace estep
+{
+  namespace internal
+  {
+    /**
+     * F = [x_1 - x_0 | x_2 - x_0 | x_3 - x_0] B of cell @p e for point-major
+     * positions @p x (row-major F[3 i + j]).
+     */
+    inline void
+    deformation_gradient(const double      *x,
+                         const P1CellData  &d,
+                         const unsigned int e,
+                         double            *F)
+    {
+      const unsigned int p0 = 3 * d.point[0][e], p1 = 3 * d.point[1][e],
+                         p2 = 3 * d.point[2][e], p3 = 3 * d.point[3][e];
+      double B[9];
+      for (unsigned int k = 0; k < 9; ++k)
+        B[k] = d.shape_gradient[k][e];
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          const double x0 = x[p0 + i];
+          const double d1 = x[p1 + i] - x0, d2 = x[p2 + i] - x0,
+                       d3 = x[p3 + i] - x0;
+          for (unsigned int j = 0; j < 3; ++j)
+            F[3 * i + j] = d1 * B[j] + d2 * B[3 + j] + d3 * B[6 + j];
+        }
+    }
+
+    /** Cofactor matrix C = d det F / dF (row-major). */
+    inline void
+    cofactor(const double *F, double *C)
+    {
+      C[0] = F[4] * F[8] - F[5] * F[7];
+      C[1] = F[5] * F[6] - F[3] * F[8];
+      C[2] = F[3] * F[7] - F[4] * F[6];
+      C[3] = F[2] * F[7] - F[1] * F[8];
+      C[4] = F[0] * F[8] - F[2] * F[6];
+      C[5] = F[1] * F[6] - F[0] * F[7];
+      C[6] = F[1] * F[5] - F[2] * F[4];
+      C[7] = F[2] * F[3] - F[0] * F[5];
+      C[8] = F[0] * F[4] - F[1] * F[3];
+    }
+
+    /** det F by the first row and its cofactors. */
+    inline double
+    determinant(const double *F, const double *C)
+    {
+      return F[0] * C[0] + F[1] * C[1] + F[2] * C[2];
+    }
+
+    /** A : B for 3x3 matrices. */
+    inline double
+    contract(const double *A, const double *B)
+    {
+      double s = 0.;
+      for (unsigned int k = 0; k < 9; ++k)
+        s += A[k] * B[k];
+      return s;
+    }
+  } // namespace internal
+} // namespace estep
+
+#endif

@@ -1,0 +1,303 @@
+#include <deal.II/base/exceptions.h>
+
+#include <estep/materials/batch_log.h>
+#include <estep/materials/neo_hookean.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    constexpr double unit     = std::numeric_limits<double>::epsilon();
+
+    /** Chunk length of the batch kernels (buffers on the stack). */
+    constexpr std::size_t chunk = 256;
+
+    /**
+     * Range of f = L (a L - mu) (a = lambda/2) over [L_lo, L_hi] (L_lo may be
+     * -infinity), before widening; @p magnitude receives a L_m^2 + mu L_m with
+     * L_m the larger finite end magnitude, the scale of the round-off of f
+     * there.
+     */
+    inline void
+    range_in_log(const double a,
+                 const double mu,
+                 const double L_star,
+                 const double f_min,
+                 const double L_lo,
+                 const double L_hi,
+                 double      &lower,
+                 double      &upper,
+                 double      &magnitude)
+    {
+      const double f_lo =
+        (L_lo == -infinity) ? infinity : L_lo * (a * L_lo - mu);
+      const double f_hi = L_hi * (a * L_hi - mu);
+      lower             = std::min(f_lo, f_hi);
+      upper             = std::max(f_lo, f_hi);
+      if (L_lo < L_star && L_star < L_hi)
+        lower = f_min;
+      const double L_m = (L_lo == -infinity) ?
+                           std::abs(L_hi) :
+                           std::max(std::abs(L_lo), std::abs(L_hi));
+      magnitude        = L_m * (a * L_m + mu);
+    }
+
+    /** Interval quotient N / [J_lo, J_hi] with 0 < J_lo <= J_hi (before
+     * widening). */
+    inline void
+    divide_positive(const double N_lo,
+                    const double N_hi,
+                    const double J_lo,
+                    const double J_hi,
+                    double      &lower,
+                    double      &upper)
+    {
+      lower = N_lo >= 0. ? N_lo / J_hi : N_lo / J_lo;
+      upper = N_hi >= 0. ? N_hi / J_lo : N_hi / J_hi;
+    }
+
+    /** Interval product [a_lo, a_hi] * [b_lo, b_hi] (before widening). */
+    inline void
+    multiply(const double a_lo,
+             const double a_hi,
+             const double b_lo,
+             const double b_hi,
+             double      &lower,
+             double      &upper)
+    {
+      const double p1 = a_lo * b_lo, p2 = a_lo * b_hi, p3 = a_hi * b_lo,
+                   p4 = a_hi * b_hi;
+      lower           = std::min(std::min(p1, p2), std::min(p3, p4));
+      upper           = std::max(std::max(p1, p2), std::max(p3, p4));
+    }
+  } // namespace
+
+  NeoHookean::NeoHookean(const double lambda0, const double mu0)
+    : lambda0(lambda0)
+    , mu0(mu0)
+  {
+    AssertThrow(lambda0 >= 0. && mu0 > 0. && std::isfinite(lambda0) &&
+                  std::isfinite(mu0),
+                dealii::ExcMessage(
+                  "NeoHookean: the Lame constants must satisfy lambda0 >= 0 "
+                  "and mu0 > 0 (got lambda0 = " +
+                  std::to_string(lambda0) + ", mu0 = " + std::to_string(mu0) +
+                  ")."));
+  }
+
+  std::string
+  NeoHookean::name() const
+  {
+    return "neo-Hookean";
+  }
+
+  double
+  NeoHookean::quadratic_modulus() const
+  {
+    return mu0;
+  }
+
+  double
+  NeoHookean::volumetric_energy(const double J) const
+  {
+    if (!(J > 0.))
+      return infinity;
+    const double L = std::log(J);
+    return L * (0.5 * lambda0 * L - mu0);
+  }
+
+  double
+  NeoHookean::volumetric_derivative(const double J) const
+  {
+    return (lambda0 * std::log(J) - mu0) / J;
+  }
+
+  Interval
+  NeoHookean::volumetric_energy_range(const Interval &J) const
+  {
+    if (!(J.upper > 0.))
+      return {infinity, infinity};
+    const double L_lo   = J.lower > 0. ? std::log(J.lower) : -infinity;
+    const double L_hi   = std::log(J.upper);
+    const double L_star = lambda0 > 0. ? mu0 / lambda0 : infinity;
+    const double f_min  = lambda0 > 0. ? -0.5 * mu0 * mu0 / lambda0 : -infinity;
+    double       lower, upper, magnitude;
+    range_in_log(
+      0.5 * lambda0, mu0, L_star, f_min, L_lo, L_hi, lower, upper, magnitude);
+    // log error (batch_log_ulp() ulps) and the evaluation of the quadratic in
+    // L.
+    const double margin = (2. * batch_log_ulp() + 8.) * unit * magnitude;
+    return {lower - margin, upper + margin};
+  }
+
+  Interval
+  NeoHookean::volumetric_derivative_range(const Interval &J) const
+  {
+    if (!(J.lower > 0.))
+      return {-infinity, infinity};
+    const double L_lo = std::log(J.lower), L_hi = std::log(J.upper);
+    const double e = (batch_log_ulp() + 4.) * unit *
+                     (lambda0 * std::max(std::abs(L_lo), std::abs(L_hi)) + mu0);
+    double lower, upper;
+    divide_positive(lambda0 * L_lo - mu0 - e,
+                    lambda0 * L_hi - mu0 + e,
+                    J.lower,
+                    J.upper,
+                    lower,
+                    upper);
+    return Interval{lower, upper}.widened(4. * unit);
+  }
+
+  double
+  NeoHookean::sum_volumetric_energy(const double     *J,
+                                    const double     *w,
+                                    const std::size_t n) const
+  {
+    const double a   = 0.5 * lambda0;
+    double       sum = 0.;
+    double       L[chunk];
+    for (std::size_t begin = 0; begin < n; begin += chunk)
+      {
+        const std::size_t m  = std::min(chunk, n - begin);
+        const double     *Jc = J + begin, *wc = w + begin;
+        bool              inadmissible = false;
+        for (std::size_t i = 0; i < m; ++i)
+          inadmissible |= !(Jc[i] > 0.);
+        if (inadmissible)
+          return infinity;
+        batch_log(Jc, L, m);
+        double      s0 = 0., s1 = 0.;
+        std::size_t i = 0;
+        for (; i + 2 <= m; i += 2)
+          {
+            s0 += wc[i] * L[i] * (a * L[i] - mu0);
+            s1 += wc[i + 1] * L[i + 1] * (a * L[i + 1] - mu0);
+          }
+        for (; i < m; ++i)
+          s0 += wc[i] * L[i] * (a * L[i] - mu0);
+        sum += s0 + s1;
+      }
+    return sum;
+  }
+
+  LineValue
+  NeoHookean::sum_volumetric_energy_and_slope(const double     *J,
+                                              const double     *dJ,
+                                              const double     *w,
+                                              const std::size_t n) const
+  {
+    const double a = 0.5 * lambda0;
+    LineValue    r{0., 0.};
+    double       L[chunk];
+    for (std::size_t begin = 0; begin < n; begin += chunk)
+      {
+        const std::size_t m  = std::min(chunk, n - begin);
+        const double     *Jc = J + begin, *dJc = dJ + begin, *wc = w + begin;
+        bool              inadmissible = false;
+        for (std::size_t i = 0; i < m; ++i)
+          inadmissible |= !(Jc[i] > 0.);
+        if (inadmissible)
+          return {infinity, 0.};
+        batch_log(Jc, L, m);
+        double value = 0., slope = 0.;
+        for (std::size_t i = 0; i < m; ++i)
+          {
+            value += wc[i] * L[i] * (a * L[i] - mu0);
+            slope += wc[i] * (lambda0 * L[i] - mu0) * dJc[i] / Jc[i];
+          }
+        r.value += value;
+        r.derivative += slope;
+      }
+    return r;
+  }
+
+  void
+  NeoHookean::volumetric_derivatives(const double     *J,
+                                     double           *df,
+                                     const std::size_t n) const
+  {
+    batch_log(J, df, n);
+    for (std::size_t i = 0; i < n; ++i)
+      df[i] = (lambda0 * df[i] - mu0) / J[i];
+  }
+
+  LineEnclosure
+  NeoHookean::enclose_volumetric_sum(const double     *J_lo,
+                                     const double     *J_hi,
+                                     const double     *dJ_lo,
+                                     const double     *dJ_hi,
+                                     const double     *w,
+                                     const std::size_t n) const
+  {
+    const double a      = 0.5 * lambda0;
+    const double L_star = lambda0 > 0. ? mu0 / lambda0 : infinity;
+    const double f_min  = lambda0 > 0. ? -0.5 * mu0 * mu0 / lambda0 : -infinity;
+    // The log error enters f as at most |f'(L)| dL <= 2 ulp_log u (a L^2 + mu
+    // |L|).
+    const double log_factor = 2. * batch_log_ulp() * unit;
+
+    double value_lower = 0., value_upper = 0., value_magnitude = 0.;
+    double slope_lower = 0., slope_upper = 0., slope_magnitude = 0.;
+    bool   slope_unbounded = false;
+
+    double L_lo[chunk], L_hi[chunk];
+    for (std::size_t begin = 0; begin < n; begin += chunk)
+      {
+        const std::size_t m = std::min(chunk, n - begin);
+        for (std::size_t i = 0; i < m; ++i)
+          L_lo[i] = std::max(J_lo[begin + i], 0.);
+        batch_log(L_lo, L_lo, m);
+        batch_log(J_hi + begin, L_hi, m);
+        for (std::size_t i = 0; i < m; ++i)
+          {
+            const std::size_t k = begin + i;
+            if (!(J_hi[k] > 0.))
+              return {{infinity, infinity}, {-infinity, infinity}};
+            double lower, upper, magnitude;
+            range_in_log(
+              a, mu0, L_star, f_min, L_lo[i], L_hi[i], lower, upper, magnitude);
+            value_lower += w[k] * lower;
+            value_upper += w[k] * upper;
+            value_magnitude += w[k] * magnitude;
+
+            if (!(J_lo[k] > 0.))
+              {
+                slope_unbounded = true;
+                continue;
+              }
+            const double e =
+              log_factor *
+              (lambda0 * std::max(std::abs(L_lo[i]), std::abs(L_hi[i])) + mu0);
+            double q_lo, q_hi, d_lo, d_hi;
+            divide_positive(lambda0 * L_lo[i] - mu0 - e,
+                            lambda0 * L_hi[i] - mu0 + e,
+                            J_lo[k],
+                            J_hi[k],
+                            q_lo,
+                            q_hi);
+            multiply(q_lo, q_hi, dJ_lo[k], dJ_hi[k], d_lo, d_hi);
+            slope_lower += w[k] * d_lo;
+            slope_upper += w[k] * d_hi;
+            slope_magnitude += w[k] * std::max(std::abs(d_lo), std::abs(d_hi));
+          }
+      }
+
+    // Per-term round-off (log error, quadratic in L, products) and summation in
+    // any order: (n + const) u sum of magnitudes, with a safety factor 2.
+    const double  factor = 2. * (static_cast<double>(n) + 32.) * unit;
+    LineEnclosure r;
+    const double  value_margin = (factor + log_factor) * value_magnitude;
+    r.value = Interval{value_lower - value_margin, value_upper + value_margin};
+    if (slope_unbounded)
+      r.derivative = {-infinity, infinity};
+    else
+      r.derivative = Interval{slope_lower - factor * slope_magnitude,
+                              slope_upper + factor * slope_magnitude};
+    return r;
+  }
+} // namespace estep

@@ -1,0 +1,242 @@
+// The P1 elastic body on the seed's cube: counts, mass, the spinning-cube
+// initial energy and angular momentum, energy and gradient, invariance under
+// rigid motions, bad meshes.
+#include <deal.II/base/exceptions.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/meshes.h>
+#include <estep/materials/neo_hookean.h>
+
+#include <gtest/gtest.h>
+
+#include "test_bodies.h"
+
+#include <cmath>
+
+namespace
+{
+  using estep_test::seed_cube;
+
+  TEST(ElasticBody, SeedCubeCounts)
+  {
+    const auto &body = seed_cube();
+    EXPECT_EQ(body.n_cells(), 12288u);
+    EXPECT_EQ(body.n_vertices(), 2969u);
+    EXPECT_EQ(body.n_dofs(), 3u * 2969u);
+    EXPECT_EQ(body.spatial_dimension(), 3u);
+  }
+
+  TEST(ElasticBody, VolumeAndMass)
+  {
+    const auto &body = seed_cube();
+    EXPECT_NEAR(body.volume(), 1., 1e-12);
+    EXPECT_NEAR(body.mass(), 0.100, 1e-13);
+    // Lumped mass: rho vol / 4 per vertex and cell.
+    std::vector<double> m(body.n_vertices(), 0.);
+    const auto         &d = body.cell_data();
+    for (unsigned int e = 0; e < d.n_cells; ++e)
+      for (unsigned int a = 0; a < 4; ++a)
+        m[d.point[a][e]] += 0.25 * 0.1 * d.volume[e];
+    for (unsigned int i = 0; i < body.n_vertices(); ++i)
+      {
+        EXPECT_NEAR(body.point_mass(i), m[i], 1e-16);
+        EXPECT_EQ(body.inverse_mass()[3 * i], 1. / body.point_mass(i));
+      }
+  }
+
+  TEST(ElasticBody, SpinningCubeKineticEnergyAndAngularMomentum)
+  {
+    const auto         &body = seed_cube();
+    const estep::Vector q    = body.reference_configuration();
+    const estep::Vector v =
+      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, {{0.5, 0.5, 0.5}});
+    const double T = estep::kinetic_energy(body, v);
+    const auto   p = estep::compute_momenta(body, q, v);
+    EXPECT_NEAR(T, 8.43099e-3, 0.5e-8);
+    EXPECT_NEAR(std::abs(p.angular[2]), 1.686198e-2, 0.5e-8);
+    EXPECT_NEAR(p.angular[2], 2. * T, 1e-15); // L = I omega, T = I omega^2 / 2
+    for (unsigned int c = 0; c < 3; ++c)
+      EXPECT_NEAR(p.linear[c], 0., 1e-16);
+    EXPECT_NEAR(p.angular[0], 0., 1e-15);
+    EXPECT_NEAR(p.angular[1], 0., 1e-15);
+    RecordProperty("T0", std::to_string(T));
+  }
+
+  TEST(ElasticBody, UndeformedEnergyIsZero)
+  {
+    const auto         &body = seed_cube();
+    const estep::Vector q    = body.reference_configuration();
+    EXPECT_NEAR(body.energy(q), 0., 1e-15);
+    estep::Vector g;
+    body.gradient(q, g);
+    EXPECT_LT(g.linfty_norm(), 1e-15);
+  }
+
+  TEST(ElasticBody, GradientMatchesCentralDifferences)
+  {
+    const auto          body = estep_test::cube_body(2);
+    const estep::Vector q    = estep_test::perturbed(*body, 0.03, 11);
+    ASSERT_TRUE(std::isfinite(body->energy(q)));
+    estep::Vector g;
+    body->gradient(q, g);
+    const double scale = g.linfty_norm();
+    ASSERT_GT(scale, 1e-6);
+    for (unsigned int k = 0; k < body->n_dofs(); ++k)
+      {
+        const double  h  = 1e-6;
+        estep::Vector qp = q, qm = q;
+        qp[k] += h;
+        qm[k] -= h;
+        const double fd = (body->energy(qp) - body->energy(qm)) / (2. * h);
+        EXPECT_NEAR(g[k], fd, 1e-7 * scale) << "dof " << k;
+      }
+    // Total force and torque of an invariant energy vanish.
+    double force[3] = {0., 0., 0.}, torque[3] = {0., 0., 0.};
+    for (unsigned int i = 0; i < body->n_vertices(); ++i)
+      {
+        const double *x = q.data() + 3 * i, *f = g.data() + 3 * i;
+        for (unsigned int c = 0; c < 3; ++c)
+          force[c] += f[c];
+        torque[0] += x[1] * f[2] - x[2] * f[1];
+        torque[1] += x[2] * f[0] - x[0] * f[2];
+        torque[2] += x[0] * f[1] - x[1] * f[0];
+      }
+    for (unsigned int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(force[c], 0., 1e-14 * scale * body->n_vertices());
+        EXPECT_NEAR(torque[c], 0., 1e-14 * scale * body->n_vertices());
+      }
+  }
+
+  TEST(ElasticBody, GradientOnSeedCubeSampledDofs)
+  {
+    const auto         &body = seed_cube();
+    const estep::Vector q    = estep_test::perturbed(body, 0.005, 12);
+    estep::Vector       g;
+    body.gradient(q, g);
+    const double scale = g.linfty_norm();
+    for (unsigned int k = 0; k < body.n_dofs(); k += 997)
+      {
+        const double  h  = 1e-6;
+        estep::Vector qp = q, qm = q;
+        qp[k] += h;
+        qm[k] -= h;
+        EXPECT_NEAR(g[k],
+                    (body.energy(qp) - body.energy(qm)) / (2. * h),
+                    1e-6 * scale);
+      }
+  }
+
+  TEST(ElasticBody, InvariantUnderRigidMotion)
+  {
+    const auto         &body = seed_cube();
+    const estep::Vector q    = estep_test::perturbed(body, 0.005, 13);
+    // Rotation R about the axis (1, 2, 3)/|.| by 0.7 rad, then a translation.
+    const double n[3] = {1. / std::sqrt(14.),
+                         2. / std::sqrt(14.),
+                         3. / std::sqrt(14.)};
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    double       R[3][3];
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        R[i][j] = (i == j ? c : 0.) + (1. - c) * n[i] * n[j];
+    R[0][1] -= s * n[2];
+    R[0][2] += s * n[1];
+    R[1][0] += s * n[2];
+    R[1][2] -= s * n[0];
+    R[2][0] -= s * n[1];
+    R[2][1] += s * n[0];
+    const double  t[3] = {0.3, -1.2, 2.5};
+    estep::Vector Q(q.size());
+    for (unsigned int i = 0; i < body.n_vertices(); ++i)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          Q[3 * i + a] = t[a];
+          for (unsigned int b = 0; b < 3; ++b)
+            Q[3 * i + a] += R[a][b] * q[3 * i + b];
+        }
+    const double V = body.energy(q);
+    ASSERT_GT(V, 0.);
+    EXPECT_NEAR(body.energy(Q), V, 1e-12 * V);
+    estep::Vector g, G;
+    body.gradient(q, g);
+    body.gradient(Q, G);
+    const double scale = g.linfty_norm();
+    for (unsigned int i = 0; i < body.n_vertices(); ++i)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          double Rg = 0.;
+          for (unsigned int b = 0; b < 3; ++b)
+            Rg += R[a][b] * g[3 * i + b];
+          EXPECT_NEAR(G[3 * i + a], Rg, 1e-11 * scale);
+        }
+  }
+
+  TEST(ElasticBody, InvertedConfigurationHasInfiniteEnergy)
+  {
+    const auto   &body = seed_cube();
+    estep::Vector q    = body.reference_configuration();
+    // Mirror the whole body: every cell inverted.
+    for (unsigned int i = 0; i < body.n_vertices(); ++i)
+      q[3 * i] = -q[3 * i];
+    EXPECT_TRUE(std::isinf(body.energy(q)));
+    EXPECT_GT(body.energy(q), 0.);
+  }
+
+  TEST(ElasticBody, RejectsInvertedCell)
+  {
+    // One tetrahedron with negative orientation.
+    const std::vector<dealii::Point<3>> vertices = {{0., 0., 0.},
+                                                    {1., 0., 0.},
+                                                    {0., 1., 0.},
+                                                    {0., 0., 1.}};
+    std::vector<dealii::CellData<3>>    cells(1, dealii::CellData<3>(4));
+    cells[0].vertices = {0, 2, 1, 3};
+    dealii::Triangulation<3> tria;
+    tria.create_triangulation(vertices, cells, dealii::SubCellData());
+    try
+      {
+        estep::ElasticBody body(tria,
+                                std::make_shared<estep::NeoHookean>(1., 1.),
+                                1.);
+        FAIL() << "an inverted cell was accepted";
+      }
+    catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("inverted tetrahedron"),
+                  std::string::npos)
+          << e.what();
+      }
+  }
+
+  TEST(ElasticBody, RejectsHexahedra)
+  {
+    dealii::Triangulation<3> tria;
+    dealii::GridGenerator::hyper_cube(tria);
+    try
+      {
+        estep::ElasticBody body(tria,
+                                std::make_shared<estep::NeoHookean>(1., 1.),
+                                1.);
+        FAIL() << "a hexahedral mesh was accepted";
+      }
+    catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("not a tetrahedron"),
+                  std::string::npos)
+          << e.what();
+      }
+  }
+
+  TEST(ElasticBody, ClosestPointAndDofHandler)
+  {
+    const auto        &body = seed_cube();
+    const unsigned int i    = body.closest_point({{0.5, 1.0, 1.0}});
+    const auto         X    = body.reference_configuration();
+    EXPECT_DOUBLE_EQ(X[3 * i], 0.5);
+    EXPECT_DOUBLE_EQ(X[3 * i + 1], 1.0);
+    EXPECT_DOUBLE_EQ(X[3 * i + 2], 1.0);
+  }
+} // namespace

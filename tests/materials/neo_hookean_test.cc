@@ -1,0 +1,166 @@
+// The neo-Hookean material: W, P, its volumetric ranges and the batch kernels
+// against the scalar path.
+#include <deal.II/base/tensor.h>
+
+#include <estep/materials/batch_log.h>
+#include <estep/materials/neo_hookean.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+  using estep::Interval;
+  using estep::NeoHookean;
+
+  const NeoHookean material(0.0100, 0.0066);
+
+  dealii::Tensor<2, 3>
+  random_F(std::mt19937 &rng, const double amplitude)
+  {
+    std::uniform_real_distribution<double> u(-amplitude, amplitude);
+    dealii::Tensor<2, 3>                   F;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        F[i][j] = (i == j ? 1. : 0.) + u(rng);
+    return F;
+  }
+
+  TEST(NeoHookean, ZeroAtIdentityAndClosedForm)
+  {
+    dealii::Tensor<2, 3> I;
+    for (unsigned int d = 0; d < 3; ++d)
+      I[d][d] = 1.;
+    EXPECT_EQ(material.energy_density(I), 0.);
+    EXPECT_NEAR(material.reference_energy_density(), 1.5 * 0.0066, 1e-18);
+    std::mt19937 rng(1);
+    for (unsigned int k = 0; k < 20; ++k)
+      {
+        const auto   F = random_F(rng, 0.3);
+        const double J = dealii::determinant(F), L = std::log(J);
+        const double W =
+          0.005 * L * L - 0.0066 * L + 0.0033 * (F.norm_square() - 3.);
+        EXPECT_NEAR(material.energy_density(F), W, 1e-15);
+      }
+    dealii::Tensor<2, 3> inverted = I;
+    inverted[0][0]                = -1.;
+    EXPECT_TRUE(std::isinf(material.energy_density(inverted)));
+  }
+
+  TEST(NeoHookean, StressIsDerivativeOfEnergy)
+  {
+    std::mt19937 rng(2);
+    for (unsigned int k = 0; k < 10; ++k)
+      {
+        const auto F = random_F(rng, 0.3);
+        const auto P = material.first_piola_stress(F);
+        // Closed form: P = mu (F - F^-T) + lambda log J F^-T.
+        const auto F_invT = dealii::transpose(dealii::invert(F));
+        const auto P_ref  = 0.0066 * (F - F_invT) +
+                           0.0100 * std::log(dealii::determinant(F)) * F_invT;
+        EXPECT_LT((P - P_ref).norm(), 1e-15);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double h  = 1e-6;
+              auto         Fp = F, Fm = F;
+              Fp[i][j] += h;
+              Fm[i][j] -= h;
+              const double fd =
+                (material.energy_density(Fp) - material.energy_density(Fm)) /
+                (2. * h);
+              EXPECT_NEAR(P[i][j], fd, 1e-9);
+            }
+      }
+  }
+
+  TEST(NeoHookean, VolumetricRangesContainSamples)
+  {
+    std::mt19937                           rng(3);
+    std::uniform_real_distribution<double> u(0.05, 3.);
+    for (unsigned int k = 0; k < 500; ++k)
+      {
+        double a = u(rng), b = u(rng);
+        if (k % 5 == 0)
+          b = a * (1. + 1e-9); // very narrow
+        const Interval J = Interval::hull(a, b);
+        const Interval f = material.volumetric_energy_range(J);
+        const Interval d = material.volumetric_derivative_range(J);
+        for (unsigned int m = 0; m <= 50; ++m)
+          {
+            const double x = J.lower + (J.upper - J.lower) * m / 50.;
+            EXPECT_TRUE(f.contains(material.volumetric_energy(x)));
+            EXPECT_TRUE(d.contains(material.volumetric_derivative(x)));
+          }
+      }
+    // Across J* = exp(mu/lambda): the minimum -mu^2/(2 lambda) must be inside.
+    const double   J_star = std::exp(0.66);
+    const Interval f =
+      material.volumetric_energy_range({0.5 * J_star, 2. * J_star});
+    EXPECT_LE(f.lower, -0.0066 * 0.0066 / 0.02);
+    EXPECT_GT(f.lower, -0.0066 * 0.0066 / 0.02 * (1. + 1e-12));
+  }
+
+  TEST(NeoHookean, BatchKernelsMatchScalarPath)
+  {
+    std::mt19937                           rng(4);
+    std::uniform_real_distribution<double> u(0.2, 2.5);
+    const std::size_t                      n = 1001;
+    std::vector<double> J(n), dJ(n), w(n), L(n), L_ref(n), df(n);
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        J[i]  = u(rng);
+        dJ[i] = u(rng) - 1.;
+        w[i]  = 0.1 * u(rng);
+      }
+    estep::batch_log(J.data(), L.data(), n);
+    estep::batch_log_scalar(J.data(), L_ref.data(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      EXPECT_NEAR(L[i], L_ref[i], 4e-16 * (1. + std::abs(L_ref[i])));
+
+    double value = 0., slope = 0.;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        value += w[i] * material.volumetric_energy(J[i]);
+        slope += w[i] * material.volumetric_derivative(J[i]) * dJ[i];
+      }
+    EXPECT_NEAR(material.sum_volumetric_energy(J.data(), w.data(), n),
+                value,
+                1e-14);
+    const auto vs = material.sum_volumetric_energy_and_slope(J.data(),
+                                                             dJ.data(),
+                                                             w.data(),
+                                                             n);
+    EXPECT_NEAR(vs.value, value, 1e-14);
+    EXPECT_NEAR(vs.derivative, slope, 1e-14);
+    material.volumetric_derivatives(J.data(), df.data(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      EXPECT_NEAR(df[i], material.volumetric_derivative(J[i]), 1e-15);
+
+    // The batch enclosure agrees with the default (scalar) one and holds the
+    // point sums.
+    const auto e = material.enclose_volumetric_sum(
+      J.data(), J.data(), dJ.data(), dJ.data(), w.data(), n);
+    const auto e2 = material.estep::Material::enclose_volumetric_sum(
+      J.data(), J.data(), dJ.data(), dJ.data(), w.data(), n);
+    EXPECT_TRUE(e.value.contains(value));
+    EXPECT_TRUE(e.derivative.contains(slope));
+    EXPECT_TRUE(e2.value.contains(value));
+    EXPECT_TRUE(e2.derivative.contains(slope));
+    EXPECT_LT(e.value.width(), 1e-12);
+
+    // Inadmissible entries.
+    J[7] = -0.1;
+    EXPECT_TRUE(
+      std::isinf(material.sum_volumetric_energy(J.data(), w.data(), n)));
+  }
+
+  TEST(NeoHookean, RejectsBadConstants)
+  {
+    EXPECT_THROW(NeoHookean(0.01, 0.), std::exception);
+    EXPECT_THROW(NeoHookean(-1., 0.01), std::exception);
+  }
+} // namespace
