@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/revision.h>
 #include <deal.II/base/utilities.h>
@@ -8,6 +9,9 @@
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/contact/ccd_command.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/implicit/create_implicit_integrator.h>
+#include <estep/io/field_output.h>
 #include <estep/io/history_writer.h>
 #include <estep/io/json_writer.h>
 #include <estep/io/progress_line.h>
@@ -195,12 +199,18 @@ namespace estep
     }
 
     std::unique_ptr<TimeIntegrator>
-    create_integrator(const RunParameters    &parameters,
-                      const MechanicalSystem &system)
+    create_integrator(const RunParameters      &parameters,
+                      dealii::ParameterHandler &prm,
+                      const MechanicalSystem   &system)
     {
       if (parameters.method == "energy stepping")
         return std::make_unique<EnergyStepping>(system, parameters.energy_step);
-      return std::make_unique<ExplicitNewmark>(system, parameters.time_step);
+      if (parameters.method == "explicit newmark")
+        return std::make_unique<ExplicitNewmark>(system, parameters.time_step);
+      return create_implicit_integrator(parameters.method,
+                                        prm,
+                                        system,
+                                        parameters.time_step);
     }
 
     JsonObject
@@ -219,7 +229,7 @@ namespace estep
     }
 
     int
-    run(const CommandLine &command)
+    run(const CommandLine &command, int argc, char **argv)
     {
       dealii::ParameterHandler prm;
       read_parameters(command, prm);
@@ -238,7 +248,21 @@ namespace estep
       }
 
       const MechanicalSystem &system = *problem.system;
-      auto integrator                = create_integrator(parameters, system);
+      // MPI, where a part needs it: HDF5 output and Trilinos solvers.
+      prm.enter_subsection("Implicit integrators");
+      const bool trilinos = prm.get("Linear solver") == "cg amg" &&
+                            parameters.method != "energy stepping" &&
+                            parameters.method != "explicit newmark";
+      prm.leave_subsection();
+      const bool hdf5 = parameters.field_output_interval > 0. &&
+                        parameters.field_output_format == "hdf5";
+      std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+      if (trilinos || hdf5)
+        mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(argc,
+                                                                         argv,
+                                                                         1);
+
+      auto integrator = create_integrator(parameters, prm, system);
       integrator->initialize(parameters.start_time, problem.q0, problem.v0);
 
       const double T0 =
@@ -253,6 +277,23 @@ namespace estep
       std::vector<RunObserver *> observers = {&history, &histogram};
       if (parameters.h1_norm)
         observers.push_back(&norm);
+      std::unique_ptr<FieldOutput> fields;
+      if (parameters.field_output_interval > 0.)
+        {
+          const auto *body = dynamic_cast<const ElasticBody *>(&system);
+          if (body == nullptr)
+            throw std::runtime_error(
+              "Output/Field output interval: the system <" + system.name() +
+              "> has no fields to write.");
+          fields =
+            std::make_unique<FieldOutput>(*body,
+                                          directory.string(),
+                                          hdf5 ? FieldOutput::Format::hdf5 :
+                                                 FieldOutput::Format::vtu,
+                                          parameters.start_time,
+                                          parameters.field_output_interval);
+          observers.push_back(fields.get());
+        }
       std::unique_ptr<ProgressLine> progress;
       if (parameters.progress == "on" ||
           (parameters.progress == "auto" && ProgressLine::stderr_is_terminal()))
@@ -398,7 +439,7 @@ namespace estep
           throw std::runtime_error(
             "No input file given. Usage: estep [options] INPUT.prm "
             "(see estep --help).");
-        return run(command);
+        return run(command, argc, argv);
       }
     catch (const dealii::ExceptionBase &exception)
       {

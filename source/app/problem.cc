@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/app/argon_cluster_problem.h>
+#include <estep/app/elastic_body_problem.h>
 #include <estep/app/problem.h>
 
 #include <stdexcept>
@@ -14,11 +15,12 @@ namespace estep
     prm.declare_entry(
       "System",
       "argon cluster",
-      dealii::Patterns::Selection("argon cluster"),
+      dealii::Patterns::Selection("argon cluster|elastic body"),
       "The mechanical system to integrate. Each system reads its own "
       "subsection of the same name.");
     prm.leave_subsection();
     ArgonClusterProblem::declare_parameters(prm);
+    ElasticBodyProblem::declare_parameters(prm);
   }
 
 
@@ -31,6 +33,8 @@ namespace estep
     prm.leave_subsection();
     if (system == "argon cluster")
       return ArgonClusterProblem::create(prm);
+    if (system == "elastic body")
+      return ElasticBodyProblem::create(prm);
     throw std::runtime_error("Problem/System: unknown system <" + system +
                              ">.");
   }

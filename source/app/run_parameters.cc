@@ -1,6 +1,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/app/run_parameters.h>
+#include <estep/implicit/create_implicit_integrator.h>
+#include <estep/implicit/implicit_parameters.h>
 
 #include <stdexcept>
 
@@ -26,10 +28,16 @@ namespace estep
       prm.declare_entry(
         "Method",
         "energy stepping",
-        Selection("energy stepping|explicit newmark"),
+        Selection("energy stepping|explicit newmark|" +
+                  implicit_method_names()),
         "Time integrator: energy stepping (exact flow of the terraced "
-        "potential h floor(V/h)) or explicit newmark (beta = 0, gamma = "
-        "1/2, velocity Verlet).");
+        "potential h floor(V/h)); explicit newmark (beta = 0, gamma = 1/2, "
+        "velocity Verlet); and the implicit comparison methods of SUNDIALS "
+        "(elastic bodies): ida bdf (variable-step BDF), arkode midpoint "
+        "(implicit midpoint rule at the fixed time step), arkode irk (adaptive "
+        "diagonally implicit Runge-Kutta), energy momentum (discrete-gradient "
+        "scheme solved by KINSOL at the fixed time step). See the subsection "
+        "Implicit integrators.");
       prm.declare_entry("Start time", "0", Double(-max, max), "Initial time.");
       prm.declare_entry("End time",
                         "1",
@@ -44,7 +52,9 @@ namespace estep
       prm.declare_entry("Time step",
                         "1e-3",
                         Double(0., max),
-                        "Time step of explicit newmark.");
+                        "Time step of explicit newmark, arkode midpoint and "
+                        "energy momentum; the initial step of the adaptive "
+                        "implicit methods.");
       prm.declare_entry(
         "Blow-up factor",
         "1e3",
@@ -53,6 +63,8 @@ namespace estep
         "this factor times the initial |T| + |V|.");
     }
     prm.leave_subsection();
+
+    declare_implicit_parameters(prm);
 
     prm.enter_subsection("Output");
     {
@@ -75,6 +87,19 @@ namespace estep
         Bool(),
         "Accumulate the H1 norm of the trajectory, (integral |q|^2 + "
         "|q'|^2 dt)^(1/2), and report it in summary.json.");
+      prm.declare_entry(
+        "Field output interval",
+        "0",
+        Double(0., max),
+        "Write the fields of an elastic body (displacement, velocity, J, "
+        "strain energy density) for ParaView every this much simulated "
+        "time, from the start time on; 0 writes none.");
+      prm.declare_entry(
+        "Field output format",
+        "vtu",
+        Selection("vtu|hdf5"),
+        "vtu: fields/solution-NNNNN.vtu and the time series solution.pvd; "
+        "hdf5: fields/solution-NNNNN.h5 and solution.xdmf.");
     }
     prm.leave_subsection();
   }
@@ -98,9 +123,11 @@ namespace estep
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
-    history_interval = prm.get_double("History interval");
-    progress         = prm.get("Progress");
-    h1_norm          = prm.get_bool("H1 norm");
+    history_interval      = prm.get_double("History interval");
+    progress              = prm.get("Progress");
+    h1_norm               = prm.get_bool("H1 norm");
+    field_output_interval = prm.get_double("Field output interval");
+    field_output_format   = prm.get("Field output format");
     prm.leave_subsection();
 
     if (!(end_time > start_time))
@@ -110,7 +137,7 @@ namespace estep
     if (method == "energy stepping" && !(energy_step > 0.))
       throw std::runtime_error(
         "Time integration/Energy step: must be positive.");
-    if (method == "explicit newmark" && !(time_step > 0.))
+    if (method != "energy stepping" && !(time_step > 0.))
       throw std::runtime_error("Time integration/Time step: must be positive.");
   }
 } // namespace estep

@@ -388,3 +388,58 @@ namespace estep
     return dealii_objects->dof_handler;
   }
 } // namespace estep
+
+
+
+namespace estep
+{
+  void
+  ElasticBody::cell_fields(const Vector        &q,
+                           std::vector<double> &J,
+                           std::vector<double> &energy_density) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    J.resize(data.n_cells);
+    energy_density.resize(data.n_cells);
+    const double c  = body_material->quadratic_modulus();
+    const double f1 = body_material->volumetric_energy(1.);
+    for (unsigned int e = 0; e < data.n_cells; ++e)
+      {
+        double F[9], C[9];
+        internal::deformation_gradient(q.data(), data, e, F);
+        internal::cofactor(F, C);
+        J[e]              = internal::determinant(F, C);
+        energy_density[e] = J[e] > 0. ?
+                              body_material->volumetric_energy(J[e]) - f1 +
+                                0.5 * c * (internal::contract(F, F) - 3.) :
+                              std::numeric_limits<double>::infinity();
+      }
+  }
+
+  void
+  ElasticBody::track_point(const std::string           &name,
+                           const std::array<double, 3> &X)
+  {
+    tracked_points.emplace_back(name, closest_point(X));
+  }
+
+  std::vector<std::string>
+  ElasticBody::observable_names() const
+  {
+    std::vector<std::string> names;
+    for (const auto &[name, point] : tracked_points)
+      for (const char *axis : {"_x", "_y", "_z"})
+        names.push_back(name + axis);
+    return names;
+  }
+
+  std::vector<double>
+  ElasticBody::observables(const Vector &q, const Vector &) const
+  {
+    std::vector<double> values;
+    for (const auto &[name, point] : tracked_points)
+      for (unsigned int c = 0; c < 3; ++c)
+        values.push_back(q[3 * point + c]);
+    return values;
+  }
+} // namespace estep

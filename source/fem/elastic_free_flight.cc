@@ -204,6 +204,18 @@ namespace estep
       0.5 * c * FF - material.volumetric_energy(1.) * body.volume();
     quadratic[1] = c * FG;
     quadratic[2] = 0.5 * c * GG;
+
+    // The magnitude of the terms V adds up, for its round-off: the quadratic
+    // part (c/2 tr F^T F ~ 3c/2 per unit volume) dominates the volumetric
+    // terms near J = 1.
+    gross_magnitude = 0.5 * c * (std::abs(FF) + 3. * body.volume()) +
+                      std::abs(material.volumetric_energy(1.)) * body.volume();
+  }
+
+  double
+  ElasticFreeFlight::value_tolerance() const
+  {
+    return 64. * unit * gross_magnitude;
   }
 
   double
@@ -247,6 +259,8 @@ namespace estep
     slope_vertex.resize(n_cells);
     scratch_3.resize(n_cells);
     scratch_4.resize(n_cells);
+    scratch_5.resize(n_cells);
+    scratch_6.resize(n_cells);
     for (unsigned int e = 0; e < n_cells; ++e)
       {
         quadratic_roots(
@@ -262,9 +276,12 @@ namespace estep
     Assert(a <= b, dealii::ExcMessage("enclose(a, b) needs a <= b."));
     if (!critical_points_ready)
       compute_critical_points();
-    double      *J_lo = scratch_1.data(), *J_hi = scratch_2.data();
-    double      *dJ_lo = scratch_3.data(), *dJ_hi = scratch_4.data();
-    const double S = std::max(std::abs(a), std::abs(b));
+    // f and f' at the midpoint, for the second-order form below (computed
+    // first: value_and_derivative() uses the scratch arrays filled next).
+    const LineValue fm   = value_and_derivative(0.5 * (a + b));
+    double         *J_lo = scratch_1.data(), *J_hi = scratch_2.data();
+    double         *dJ_lo = scratch_3.data(), *dJ_hi = scratch_4.data();
+    const double    S = std::max(std::abs(a), std::abs(b));
     for (unsigned int e = 0; e < n_cells; ++e)
       {
         const double k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
@@ -333,7 +350,70 @@ namespace estep
         r.derivative.lower -= slope_margin;
         r.derivative.upper += slope_margin;
       }
+    tighten_by_taylor_form(a, b, fm, r);
     return r;
+  }
+
+  void
+  ElasticFreeFlight::tighten_by_taylor_form(const double     a,
+                                            const double     b,
+                                            const LineValue &fm,
+                                            LineEnclosure   &enclosure) const
+  {
+    // f(x) = f(m) + f'(m) (x - m) + f''(xi) (x - m)^2 / 2 and
+    // f'(x) = f'(m) + f''(xi) (x - m), with f'' enclosed per cell from
+    // f_e'' = w (phi''(J) J'^2 + phi'(J) J''). The first-order enclosures
+    // lose all relative accuracy when terms of V cancel (a rigid rotation
+    // leaves V = O(s^4) from terms of size O(s^2)); this form does not.
+    if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
+      return;
+    const double *J_lo = scratch_1.data(), *J_hi = scratch_2.data();
+    const double *dJ_lo = scratch_3.data(), *dJ_hi = scratch_4.data();
+    double       *d2J_lo = scratch_5.data(), *d2J_hi = scratch_6.data();
+    for (unsigned int e = 0; e < n_cells; ++e)
+      {
+        const double u      = 2. * c2[e] + 6. * c3[e] * a,
+                     v      = 2. * c2[e] + 6. * c3[e] * b;
+        const double margin = 4. * unit * (std::abs(u) + std::abs(v));
+        d2J_lo[e]           = std::min(u, v) - margin;
+        d2J_hi[e]           = std::max(u, v) + margin;
+      }
+    double   slope_magnitude = 0.;
+    Interval curvature       = body.material().enclose_volumetric_curvature_sum(
+      J_lo,
+      J_hi,
+      dJ_lo,
+      dJ_hi,
+      d2J_lo,
+      d2J_hi,
+      body.cell_data().volume.data(),
+      n_cells,
+      slope_magnitude);
+    if (!std::isfinite(curvature.lower) || !std::isfinite(curvature.upper))
+      return;
+    curvature += Interval::point(2. * quadratic[2]);
+    slope_magnitude +=
+      std::abs(quadratic[1]) +
+      2. * std::abs(quadratic[2]) * std::max(std::abs(a), std::abs(b));
+    const double r = 0.5 * (b - a);
+    const double value_margin =
+      64. * unit * (gross_magnitude + std::abs(fm.value));
+    const double   slope_margin = 64. * unit * slope_magnitude;
+    const Interval value =
+      (Interval::point(fm.value) +
+       Interval{-std::abs(fm.derivative) * r, std::abs(fm.derivative) * r} +
+       0.5 * curvature * Interval{0., r * r})
+        .widened(0., value_margin);
+    const Interval slope =
+      (Interval::point(fm.derivative) + curvature * Interval{-r, r})
+        .widened(0., slope_margin);
+    const auto intersect = [](Interval &x, const Interval &y) {
+      const Interval z{std::max(x.lower, y.lower), std::min(x.upper, y.upper)};
+      if (z.lower <= z.upper)
+        x = z;
+    };
+    intersect(enclosure.value, value);
+    intersect(enclosure.derivative, slope);
   }
 
   double

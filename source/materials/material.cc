@@ -37,6 +37,42 @@ namespace estep
            quadratic_modulus() * F;
   }
 
+  Interval
+  Material::volumetric_second_derivative_range(const Interval &) const
+  {
+    return {-std::numeric_limits<double>::infinity(),
+            std::numeric_limits<double>::infinity()};
+  }
+
+  double
+  Material::volumetric_second_derivative(const double J) const
+  {
+    const double d = 1e-5 * J;
+    return (volumetric_derivative(J + d) - volumetric_derivative(J - d)) /
+           (2. * d);
+  }
+
+  dealii::Tensor<4, 3>
+  Material::first_elasticity_tensor(const dealii::Tensor<2, 3> &F) const
+  {
+    const double               J     = dealii::determinant(F);
+    const dealii::Tensor<2, 3> F_inv = dealii::invert(F);
+    const double               df    = volumetric_derivative(J);
+    const double               a     = volumetric_second_derivative(J) * J * J +
+                     df * J; // coefficient of F^-T (x) F^-T
+    const double         b = df * J;
+    const double         c = quadratic_modulus();
+    dealii::Tensor<4, 3> A;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int I = 0; I < 3; ++I)
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            A[i][I][k][L] = (i == k && I == L ? c : 0.) +
+                            a * F_inv[I][i] * F_inv[L][k] -
+                            b * F_inv[L][i] * F_inv[I][k];
+    return A;
+  }
+
   double
   Material::sum_volumetric_energy(const double     *J,
                                   const double     *w,
@@ -118,5 +154,47 @@ namespace estep
     r.derivative.lower -= factor * slope_magnitude;
     r.derivative.upper += factor * slope_magnitude;
     return r;
+  }
+
+  namespace
+  {
+    /** The range of x^2 for x in [lo, hi]. */
+    Interval
+    square(const double lo, const double hi)
+    {
+      return (lo <= 0. && hi >= 0.) ? Interval{0., std::max(lo * lo, hi * hi)} :
+                                      Interval::hull(lo * lo, hi * hi);
+    }
+  } // namespace
+
+  Interval
+  Material::enclose_volumetric_curvature_sum(const double     *J_lo,
+                                             const double     *J_hi,
+                                             const double     *dJ_lo,
+                                             const double     *dJ_hi,
+                                             const double     *d2J_lo,
+                                             const double     *d2J_hi,
+                                             const double     *w,
+                                             const std::size_t n,
+                                             double &slope_magnitude) const
+  {
+    Interval sum     = Interval::point(0.);
+    slope_magnitude  = 0.;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < n; ++k)
+      {
+        const Interval J{J_lo[k], J_hi[k]};
+        const Interval f2 = volumetric_second_derivative_range(J);
+        const Interval f1 = volumetric_derivative_range(J);
+        if (!std::isfinite(f2.lower) || !std::isfinite(f2.upper) ||
+            !std::isfinite(f1.lower) || !std::isfinite(f1.upper))
+          return {-inf, inf};
+        sum += w[k] * (f2 * square(dJ_lo[k], dJ_hi[k]) +
+                       f1 * Interval{d2J_lo[k], d2J_hi[k]});
+        slope_magnitude += w[k] *
+                           std::max(std::abs(f1.lower), std::abs(f1.upper)) *
+                           std::max(std::abs(dJ_lo[k]), std::abs(dJ_hi[k]));
+      }
+    return sum;
   }
 } // namespace estep

@@ -117,6 +117,32 @@ namespace estep
     return (lambda0 * std::log(J) - mu0) / J;
   }
 
+  double
+  NeoHookean::volumetric_second_derivative(const double J) const
+  {
+    return (lambda0 + mu0 - lambda0 * std::log(J)) / (J * J);
+  }
+
+  Interval
+  NeoHookean::volumetric_second_derivative_range(const Interval &J) const
+  {
+    if (!(J.lower > 0.))
+      return {-infinity, infinity};
+    const auto f2 = [this](const double x) {
+      return (lambda0 + mu0 - lambda0 * std::log(x)) / (x * x);
+    };
+    Interval     range = Interval::hull(f2(J.lower), f2(J.upper));
+    const double J_min = std::exp(1.5 + mu0 / lambda0);
+    if (J.lower < J_min && J_min < J.upper)
+      range.lower = f2(J_min);
+    // Rounding of the log, the sum and the division.
+    const double e =
+      16. * unit * (lambda0 + mu0) *
+      (1. + std::abs(std::log(J.lower)) + std::abs(std::log(J.upper))) /
+      (J.lower * J.lower);
+    return {range.lower - e, range.upper + e};
+  }
+
   Interval
   NeoHookean::volumetric_energy_range(const Interval &J) const
   {
@@ -299,5 +325,68 @@ namespace estep
       r.derivative = Interval{slope_lower - factor * slope_magnitude,
                               slope_upper + factor * slope_magnitude};
     return r;
+  }
+
+  Interval
+  NeoHookean::enclose_volumetric_curvature_sum(const double     *J_lo,
+                                               const double     *J_hi,
+                                               const double     *dJ_lo,
+                                               const double     *dJ_hi,
+                                               const double     *d2J_lo,
+                                               const double     *d2J_hi,
+                                               const double     *w,
+                                               const std::size_t n,
+                                               double &slope_magnitude) const
+  {
+    const double log_factor = 2. * batch_log_ulp() * unit;
+    double       lower = 0., upper = 0., magnitude = 0.;
+    slope_magnitude = 0.;
+    double L_lo[chunk], L_hi[chunk];
+    for (std::size_t begin = 0; begin < n; begin += chunk)
+      {
+        const std::size_t m = std::min(chunk, n - begin);
+        for (std::size_t i = 0; i < m; ++i)
+          if (!(J_lo[begin + i] > 0.))
+            return {-infinity, infinity};
+        batch_log(J_lo + begin, L_lo, m);
+        batch_log(J_hi + begin, L_hi, m);
+        for (std::size_t i = 0; i < m; ++i)
+          {
+            const std::size_t k = begin + i;
+            const double      e =
+              log_factor *
+              (lambda0 * std::max(std::abs(L_lo[i]), std::abs(L_hi[i])) + mu0);
+            double f1_lo, f1_hi, f2_lo, f2_hi;
+            divide_positive(lambda0 * L_lo[i] - mu0 - e,
+                            lambda0 * L_hi[i] - mu0 + e,
+                            J_lo[k],
+                            J_hi[k],
+                            f1_lo,
+                            f1_hi);
+            divide_positive(lambda0 + mu0 - lambda0 * L_hi[i] - e,
+                            lambda0 + mu0 - lambda0 * L_lo[i] + e,
+                            J_lo[k] * J_lo[k],
+                            J_hi[k] * J_hi[k],
+                            f2_lo,
+                            f2_hi);
+            const double a = dJ_lo[k], b = dJ_hi[k];
+            const double s_hi = std::max(a * a, b * b);
+            const double s_lo =
+              (a <= 0. && b >= 0.) ? 0. : std::min(a * a, b * b);
+            double p_lo, p_hi, q_lo, q_hi;
+            multiply(f2_lo, f2_hi, s_lo, s_hi, p_lo, p_hi);
+            multiply(f1_lo, f1_hi, d2J_lo[k], d2J_hi[k], q_lo, q_hi);
+            lower += w[k] * (p_lo + q_lo);
+            upper += w[k] * (p_hi + q_hi);
+            magnitude += w[k] * (std::max(std::abs(p_lo), std::abs(p_hi)) +
+                                 std::max(std::abs(q_lo), std::abs(q_hi)));
+            slope_magnitude += w[k] *
+                               std::max(std::abs(f1_lo), std::abs(f1_hi)) *
+                               std::max(std::abs(a), std::abs(b));
+          }
+      }
+    // Products, sums and the summation over the cells.
+    const double margin = 8. * unit * magnitude;
+    return {lower - margin, upper + margin};
   }
 } // namespace estep

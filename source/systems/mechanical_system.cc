@@ -1,5 +1,7 @@
 #include <estep/systems/mechanical_system.h>
 
+#include <stdexcept>
+
 namespace estep
 {
   std::optional<ConstraintEvent>
@@ -8,6 +10,27 @@ namespace estep
                                            const double) const
   {
     return std::nullopt;
+  }
+
+  bool
+  MechanicalSystem::has_hessian() const
+  {
+    return false;
+  }
+
+  const dealii::SparsityPattern &
+  MechanicalSystem::hessian_sparsity() const
+  {
+    throw std::logic_error("The system <" + name() +
+                           "> provides no Hessian (tangent stiffness).");
+  }
+
+  void
+  MechanicalSystem::hessian(const Vector &,
+                            dealii::SparseMatrix<double> &) const
+  {
+    throw std::logic_error("The system <" + name() +
+                           "> provides no Hessian (tangent stiffness).");
   }
 
   std::vector<std::string>

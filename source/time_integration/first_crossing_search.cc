@@ -94,22 +94,39 @@ namespace estep
                       const CrossingQuery &query,
                       SearchStatistics    &statistics)
   {
-    const double c0    = query.lower_level;
-    const double c1    = query.upper_level;
-    const double limit = flight.admissible_limit();
-    const double end   = std::min(query.horizon, limit);
+    const double c0  = query.lower_level;
+    const double c1  = query.upper_level;
+    const double end = query.horizon;
     const int    departure_sign =
       query.departure == Departure::from_lower_level ? +1 :
          query.departure == Departure::from_upper_level ? -1 :
                                                           0;
-    // f is proven monotone in the departure direction on [0, prefix_end].
+    // The level the flight sits on at s = 0, if any: the departure level, or
+    // a level that f(0) lies within the flight's value tolerance of.
+    // The band around the sitting level that counts as still sitting on it: a
+    // few times the flight's round-off, so that enclosures (widened by that
+    // round-off themselves) can fit inside.
+    const double tolerance = 4. * flight.value_tolerance();
+    const double f_zero    = flight.value(0.);
+    ++statistics.n_value_evaluations;
+    const double sitting_level =
+      departure_sign > 0 ? c0 :
+      departure_sign < 0 ? c1 :
+      std::abs(f_zero - c0) <= tolerance ?
+                           c0 :
+      std::abs(f_zero - c1) <= tolerance ?
+                           c1 :
+                           std::numeric_limits<double>::quiet_NaN();
+    const bool sitting = !std::isnan(sitting_level);
+    // On [0, prefix_end] f is proven not to leave the sitting level and come
+    // back: it stays within the tolerance of it, or moves away monotonically.
     double       prefix_end = 0.;
     const double resolution_floor =
       std::max(query.first_window, std::numeric_limits<double>::min());
 
+    // f = +infinity where the configuration is inadmissible (beyond the
+    // flight's admissible limit); such intervals are never enclosed.
     const auto value_at = [&](const double s) {
-      if (s >= limit)
-        return std::numeric_limits<double>::infinity();
       ++statistics.n_value_evaluations;
       return flight.value(s);
     };
@@ -118,7 +135,7 @@ namespace estep
     double window_start = 0., window_length = std::min(query.first_window, end);
     if (!(window_length > 0.))
       window_length = end;
-    double f_start = value_at(0.);
+    double f_start = f_zero;
 
     while (window_start < end)
       {
@@ -132,8 +149,8 @@ namespace estep
           {
             const PendingInterval I = pending.back();
             pending.pop_back();
-            const bool in_prefix   = departure_sign != 0 && I.a == prefix_end;
-            const bool at_limit    = I.b >= limit;
+            const bool in_prefix   = sitting && I.a == prefix_end;
+            const bool at_limit    = !std::isfinite(I.fb);
             bool       up_possible = true, down_possible = true;
 
             if (!at_limit)
@@ -143,7 +160,17 @@ namespace estep
                 const bool increasing = enclosure.derivative.lower > 0.;
                 const bool decreasing = enclosure.derivative.upper < 0.;
 
-                if (in_prefix && (departure_sign > 0 ? increasing : decreasing))
+                if (in_prefix &&
+                    enclosure.value.lower >= sitting_level - tolerance &&
+                    enclosure.value.upper <= sitting_level + tolerance)
+                  {
+                    // Still sitting on the level, within round-off.
+                    prefix_end = I.b;
+                    continue;
+                  }
+
+                if (in_prefix && departure_sign != 0 &&
+                    (departure_sign > 0 ? increasing : decreasing))
                   {
                     // Moving away from the departure level all the way from s =
                     // 0: only the level ahead can be reached, and only if f(b)

@@ -38,6 +38,8 @@ namespace estep
     double      history_interval;
     std::string progress;
     bool        h1_norm;
+    double      field_output_interval;
+    std::string field_output_format;
   };
 } // namespace estep
 

@@ -8,6 +8,8 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dealii
 {
@@ -149,6 +151,31 @@ namespace estep
     const dealii::DoFHandler<3, 3> &
     dof_handler() const;
 
+    /**
+     * Per-cell fields of the configuration @p q, for output: the volume ratio
+     * J = det F and the strain energy density W(F) - W(I) (energy per unit
+     * reference volume; +infinity where J <= 0).
+     */
+    void
+    cell_fields(const Vector        &q,
+                std::vector<double> &J,
+                std::vector<double> &energy_density) const;
+
+    /**
+     * Track the point nearest to @p X (reference coordinates) in the history:
+     * its current position becomes the observables @p name_x, @p name_y,
+     * @p name_z.
+     */
+    void
+    track_point(const std::string &name, const std::array<double, 3> &X);
+
+    /** The tracked points' current coordinates: "<name>_x", "<name>_y", ... */
+    std::vector<std::string>
+    observable_names() const override;
+
+    std::vector<double>
+    observables(const Vector &q, const Vector &v) const override;
+
   private:
     struct DealIIObjects;
 
@@ -161,6 +188,8 @@ namespace estep
     Vector                          inv_mass;
     /** Scratch of energy(): J per cell. */
     mutable std::vector<double> scratch_J;
+    /** Tracked points: name and point index. */
+    std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };
 } // namespace estep
 

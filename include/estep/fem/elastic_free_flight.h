@@ -58,6 +58,11 @@ namespace estep
     double
     admissible_limit() const override;
 
+    /** 64 units of round-off of the sum of the magnitudes of the energy
+     * terms at s = 0. */
+    double
+    value_tolerance() const override;
+
     /** The cubic coefficients c_k of J_e(s) of cell @p e. */
     std::array<double, 4>
     jacobian_cubic(const unsigned int e) const;
@@ -70,16 +75,28 @@ namespace estep
     void
     compute_critical_points() const;
 
+    /** Intersect @p enclosure of [a, b] with the second-order Taylor form
+     * about the midpoint, where @p fm holds f and f' (needs the per-cell J
+     * and J' ranges of [a, b] in the scratch arrays). */
+    void
+    tighten_by_taylor_form(const double     a,
+                           const double     b,
+                           const LineValue &fm,
+                           LineEnclosure   &enclosure) const;
+
     const ElasticBody  &body;
     unsigned int        n_cells;
     std::vector<double> c0, c1, c2, c3;
     double              quadratic[3];
+    /** Sum of the magnitudes of the terms of V at s = 0. */
+    double gross_magnitude = 0.;
 
     mutable bool                critical_points_ready = false;
     mutable std::vector<double> critical_1, critical_2, slope_vertex;
     mutable bool                limit_ready = false;
     mutable double              limit       = 0.;
-    mutable std::vector<double> scratch_1, scratch_2, scratch_3, scratch_4;
+    mutable std::vector<double> scratch_1, scratch_2, scratch_3, scratch_4,
+      scratch_5, scratch_6;
   };
 } // namespace estep
 

@@ -76,6 +76,15 @@ namespace estep
     virtual Interval
     volumetric_derivative_range(const Interval &J) const = 0;
 
+    /**
+     * An interval holding f''(J) for every J in @p J (rigorous), used for the
+     * second-order (Taylor) enclosures of a free flight. The default,
+     * (-infinity, infinity), means "unknown": the flight then relies on its
+     * first-order enclosures alone.
+     */
+    virtual Interval
+    volumetric_second_derivative_range(const Interval &J) const;
+
     /** W_0 = f(1) + 3c/2, the energy density of the undeformed state that is
      * subtracted. */
     double
@@ -89,6 +98,27 @@ namespace estep
      * must be > 0. */
     dealii::Tensor<2, 3>
     first_piola_stress(const dealii::Tensor<2, 3> &F) const;
+
+    /**
+     * f''(J) for J > 0, the second derivative of the volumetric function (used
+     * by the tangent stiffness of the implicit integrators). The default is a
+     * central difference of volumetric_derivative() with the step 1e-5 J
+     * (relative accuracy about 1e-10 for smooth f); materials override it
+     * with the exact formula (NeoHookean does).
+     */
+    virtual double
+    volumetric_second_derivative(const double J) const;
+
+    /**
+     * The first elasticity tensor A = dP/dF = d^2W/dF^2 at @p F (det F > 0):
+     * @f[ A_{iIkL} = c\,\delta_{ik}\delta_{IL}
+     *      + (f''(J) J^2 + f'(J) J) F^{-1}_{Ii} F^{-1}_{Lk}
+     *      - f'(J) J F^{-1}_{Li} F^{-1}_{Ik}, @f]
+     * stored as A[i][I][k][L]. It has the major symmetry A_iIkL = A_kLiI (W
+     * is a potential).
+     */
+    dealii::Tensor<4, 3>
+    first_elasticity_tensor(const dealii::Tensor<2, 3> &F) const;
 
     /**
      * @name Batch kernels: one call per sweep over all cells.
@@ -132,6 +162,27 @@ namespace estep
                            const double     *dJ_hi,
                            const double     *w,
                            const std::size_t n) const;
+
+    /**
+     * An interval holding sum_k w[k] (f''(J_k) J_k'^2 + f'(J_k) J_k'') for all
+     * J_k in [J_lo[k], J_hi[k]], J_k' in [dJ_lo[k], dJ_hi[k]] and J_k'' in
+     * [d2J_lo[k], d2J_hi[k]]: the second derivative of the volumetric energy
+     * along a free flight. @p slope_magnitude receives an upper bound of
+     * sum_k w[k] |f'(J_k) J_k'|. The default loops over the cells with
+     * volumetric_derivative_range() and
+     * volumetric_second_derivative_range() (and is (-inf, inf) when the
+     * latter is unknown).
+     */
+    virtual Interval
+    enclose_volumetric_curvature_sum(const double     *J_lo,
+                                     const double     *J_hi,
+                                     const double     *dJ_lo,
+                                     const double     *dJ_hi,
+                                     const double     *d2J_lo,
+                                     const double     *d2J_hi,
+                                     const double     *w,
+                                     const std::size_t n,
+                                     double           &slope_magnitude) const;
     /** @} */
   };
 } // namespace estep

@@ -54,8 +54,30 @@ namespace estep
     double
     volumetric_derivative(const double J) const override;
 
+    /** f''(J) = (lambda0 + mu0 - lambda0 log J) / J^2. */
+    double
+    volumetric_second_derivative(const double J) const override;
+
     Interval
     volumetric_energy_range(const Interval &J) const override;
+
+    /** f'' decreases up to J = exp(3/2 + mu0/lambda0) and increases after. */
+    Interval
+    volumetric_second_derivative_range(const Interval &J) const override;
+
+    /** Batch version with vectorised logs: f'' = (lambda0 + mu0 - lambda0
+     * log J) / J^2 and f' = (lambda0 log J - mu0) / J, enclosed by interval
+     * division. */
+    Interval
+    enclose_volumetric_curvature_sum(const double     *J_lo,
+                                     const double     *J_hi,
+                                     const double     *dJ_lo,
+                                     const double     *dJ_hi,
+                                     const double     *d2J_lo,
+                                     const double     *d2J_hi,
+                                     const double     *w,
+                                     const std::size_t n,
+                                     double &slope_magnitude) const override;
 
     Interval
     volumetric_derivative_range(const Interval &J) const override;

@@ -66,6 +66,19 @@ namespace estep
     enclose(const double a, const double b) const = 0;
 
     /**
+     * An absolute bound on the round-off error of value() (e.g. a few units of
+     * round-off of the sum of the magnitudes of the terms V adds up). The
+     * first-crossing search treats a flight that stays within this distance of
+     * the level it departs from as still sitting on it. The default, 0,
+     * claims exact values.
+     */
+    virtual double
+    value_tolerance() const
+    {
+      return 0.;
+    }
+
+    /**
      * The end of the admissible part of the line: V is finite on [0,
      * admissible_limit()) and the search never looks beyond it (e.g. the first
      * element inversion of a finite-element body). Infinity by default.

@@ -10,6 +10,13 @@
 #include <string>
 #include <vector>
 
+namespace dealii
+{
+  class SparsityPattern;
+  template <typename number>
+  class SparseMatrix;
+} // namespace dealii
+
 namespace estep
 {
   /** The vector type of configurations, velocities and gradients. */
@@ -85,6 +92,32 @@ namespace estep
     first_constraint_event(const Vector &q,
                            const Vector &v,
                            const double  s_max) const;
+
+    /**
+     * @name Optional second derivatives (used by the implicit integrators).
+     * @{
+     */
+
+    /** Whether hessian() is available. The default: false. */
+    virtual bool
+    has_hessian() const;
+
+    /**
+     * The sparsity pattern of the Hessian (n_dofs() x n_dofs(), symmetric,
+     * diagonal included), valid for the lifetime of the system. The default
+     * throws (std::logic_error).
+     */
+    virtual const dealii::SparsityPattern &
+    hessian_sparsity() const;
+
+    /**
+     * H = d^2 V / dq^2 at the admissible configuration @p q (the tangent
+     * stiffness), written into @p H, which must have been initialised with
+     * hessian_sparsity(). The default throws (std::logic_error).
+     */
+    virtual void
+    hessian(const Vector &q, dealii::SparseMatrix<double> &H) const;
+    /** @} */
 
     /** Names of extra per-state quantities written to the history (e.g. a
      * tracked point). */

@@ -78,6 +78,9 @@ namespace estep
    * by comparing f(s) with the level, so the departure root at s = 0 is never
    * returned and a return to the same level (a crossing right after a
    * reflection) is found like any other;
+   * - where f(b) = +infinity (an inadmissible configuration, e.g. beyond the
+   *   first element inversion) the interval is not enclosed but halved: V
+   *   grows without bound towards it, so a level is reached before;
    * - an undecided interval shorter than the resolution (16 units of round-off
    * of the flight parameter) is reported as a crossing at its left end: the
    * search errs early, never late.

@@ -1,0 +1,60 @@
+#ifndef estep_io_field_output_h
+#define estep_io_field_output_h
+
+#include <estep/time_integration/time_loop.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  class ElasticBody;
+
+  /**
+   * Field output of an elastic body for ParaView, every @p interval of
+   * simulated time from the start time on (the exact dense output of the
+   * integrator): the displacement and the velocity (vertex fields), the volume
+   * ratio J and the strain energy density (cell fields).
+   *
+   * Format "vtu": one fields/solution-NNNNN.vtu per snapshot and the time
+   * series solution.pvd (rewritten atomically after each snapshot, so it is
+   * valid while the run goes on). Format "hdf5": fields/solution-NNNNN.h5 with
+   * the time series solution.xdmf (needs MPI to be initialised, which the estep
+   * command does when this format is chosen).
+   */
+  class FieldOutput : public RunObserver
+  {
+  public:
+    enum class Format
+    {
+      vtu,
+      hdf5
+    };
+
+    FieldOutput(const ElasticBody &body,
+                const std::string &directory,
+                const Format       format,
+                const double       start_time,
+                const double       interval);
+
+    ~FieldOutput() override;
+
+    /** Writes the snapshots due in (previous_time(), time()], and the start. */
+    void
+    after_step(const TimeIntegrator &integrator) override;
+
+    /** Number of snapshots written. */
+    unsigned int
+    n_snapshots() const;
+
+  private:
+    void
+    write(const Snapshot &snapshot);
+
+    struct Implementation;
+    std::unique_ptr<Implementation> implementation;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,216 @@
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/app/elastic_body_problem.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/mesh_description.h>
+#include <estep/fem/tangent_stiffness.h>
+#include <estep/materials/neo_hookean.h>
+
+#include <stdexcept>
+
+namespace estep
+{
+  namespace ElasticBodyProblem
+  {
+    namespace
+    {
+      std::array<double, 3>
+      parse_point(const std::string &text, const std::string &entry)
+      {
+        const std::vector<std::string> parts =
+          dealii::Utilities::split_string_list(text, ',');
+        if (parts.size() != 3)
+          throw std::runtime_error("Elastic body/" + entry + ": <" + text +
+                                   "> is not three comma-separated numbers.");
+        return {{dealii::Utilities::string_to_double(parts[0]),
+                 dealii::Utilities::string_to_double(parts[1]),
+                 dealii::Utilities::string_to_double(parts[2])}};
+      }
+    } // namespace
+
+
+
+    void
+    declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Anything;
+      using dealii::Patterns::Double;
+      using dealii::Patterns::List;
+      using dealii::Patterns::Selection;
+      const double max = Double::max_double_value;
+      const List   point(Double(-max, max), 3, 3, ",");
+
+      prm.enter_subsection("Elastic body");
+      {
+        prm.enter_subsection("Mesh");
+        MeshDescription::declare_parameters(prm);
+        prm.leave_subsection();
+
+        prm.enter_subsection("Material");
+        {
+          prm.declare_entry(
+            "Model",
+            "neo-Hookean",
+            Selection("neo-Hookean"),
+            "Strain energy W(F) = lambda0/2 (log J)^2 - mu0 log J + mu0/2 "
+            "tr(F^T F), relative to W(I).");
+          prm.declare_entry("Lambda",
+                            "0.0100",
+                            Double(0., max),
+                            "Lame constant lambda0 (stress units).");
+          prm.declare_entry(
+            "Mu",
+            "0.0066",
+            Double(0., max),
+            "Shear modulus mu0 (stress units); must be positive.");
+          prm.declare_entry(
+            "Density",
+            "0.100",
+            Double(0., max),
+            "Mass density rho per unit reference volume; must be positive.");
+        }
+        prm.leave_subsection();
+
+        prm.enter_subsection("Initial velocity");
+        {
+          prm.declare_entry(
+            "Type",
+            "rigid motion",
+            Selection("rigid motion|function"),
+            "rigid motion: v = V + omega x (X - c); function: the "
+            "parsed function below of the reference coordinates x, y, z.");
+          prm.declare_entry("Translational velocity",
+                            "0, 0, 0",
+                            point,
+                            "V of the rigid motion.");
+          prm.declare_entry(
+            "Angular velocity",
+            "0, 0, 1",
+            point,
+            "omega of the rigid motion (the seed's cube: 1 about z).");
+          prm.declare_entry("Rotation centre",
+                            "0.5, 0.5, 0.5",
+                            point,
+                            "c of the rigid motion.");
+          prm.declare_entry(
+            "Function expression",
+            "0; 0; 0",
+            Anything(),
+            "The three velocity components as functions of x, y, z (and "
+            "the constants below), separated by ';' (deal.II's "
+            "FunctionParser syntax).");
+          prm.declare_entry(
+            "Function constants",
+            "",
+            Anything(),
+            "Constants of the function expression, e.g. 'w=2, a=0.1'.");
+        }
+        prm.leave_subsection();
+
+        prm.declare_entry(
+          "Tracked point",
+          "0.5, 1.0, 1.0",
+          point,
+          "Reference coordinates of a point whose current position the "
+          "history records (the nearest mesh vertex): columns "
+          "tracked_x, tracked_y, tracked_z.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    Problem
+    create(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Elastic body");
+
+      MeshDescription mesh;
+      prm.enter_subsection("Mesh");
+      mesh.parse_parameters(prm);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Material");
+      const double lambda  = prm.get_double("Lambda");
+      const double mu      = prm.get_double("Mu");
+      const double density = prm.get_double("Density");
+      prm.leave_subsection();
+      if (!(mu > 0.))
+        throw std::runtime_error("Elastic body/Material/Mu: must be positive.");
+      if (!(density > 0.))
+        throw std::runtime_error(
+          "Elastic body/Material/Density: must be positive.");
+
+      dealii::Triangulation<3> tria;
+      make_mesh(mesh, tria);
+      auto body = std::make_unique<ElasticBodyWithHessian>(
+        tria,
+        std::make_shared<NeoHookean>(lambda, mu),
+        density,
+        "elastic body");
+      body->track_point("tracked",
+                        parse_point(prm.get("Tracked point"), "Tracked point"));
+
+      Problem problem;
+      problem.q0 = body->reference_configuration();
+
+      prm.enter_subsection("Initial velocity");
+      if (prm.get("Type") == "rigid motion")
+        problem.v0 = body->rigid_velocity(
+          problem.q0,
+          parse_point(prm.get("Translational velocity"),
+                      "Translational velocity"),
+          parse_point(prm.get("Angular velocity"), "Angular velocity"),
+          parse_point(prm.get("Rotation centre"), "Rotation centre"));
+      else
+        {
+          dealii::FunctionParser<3> velocity(3);
+          const std::string         expression = prm.get("Function expression");
+          std::map<std::string, double> constants;
+          for (const std::string &item : dealii::Utilities::split_string_list(
+                 prm.get("Function constants"), ','))
+            {
+              const auto parts =
+                dealii::Utilities::split_string_list(item, '=');
+              if (parts.size() != 2)
+                throw std::runtime_error(
+                  "Elastic body/Initial velocity/Function constants: <" + item +
+                  "> is not of the form name=value.");
+              constants[parts[0]] =
+                dealii::Utilities::string_to_double(parts[1]);
+            }
+          velocity.initialize("x,y,z",
+                              dealii::Utilities::split_string_list(expression,
+                                                                   ';'),
+                              constants);
+          problem.v0.reinit(problem.q0.size());
+          for (unsigned int i = 0; i < body->n_vertices(); ++i)
+            {
+              const dealii::Point<3> X(problem.q0[3 * i],
+                                       problem.q0[3 * i + 1],
+                                       problem.q0[3 * i + 2]);
+              for (unsigned int c = 0; c < 3; ++c)
+                problem.v0[3 * i + c] = velocity.value(X, c);
+            }
+        }
+      prm.leave_subsection();
+      prm.leave_subsection();
+
+      problem.description.add("cells", body->n_cells())
+        .add("vertices", body->n_vertices())
+        .add("volume", body->volume())
+        .add("mass", body->mass())
+        .add("mesh", mesh.type)
+        .add("material", "neo-Hookean")
+        .add("lambda0", lambda)
+        .add("mu0", mu)
+        .add("density", density);
+      problem.system = std::move(body);
+      return problem;
+    }
+  } // namespace ElasticBodyProblem
+} // namespace estep

@@ -1,0 +1,195 @@
+// The implicit integrators through the factory and the parameter file, and
+// forced failures (a huge step with one Newton iteration, a step-size
+// collapse): the run ends with status "unstable" and a clear message, not an
+// abort.
+#include <deal.II/base/parameter_handler.h>
+
+#include <estep/implicit/create_implicit_integrator.h>
+#include <estep/implicit/implicit_integrator.h>
+#include <estep/implicit/implicit_parameters.h>
+
+#include <gtest/gtest.h>
+
+#include "implicit_test_support.h"
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace
+{
+  const estep::ElasticBodyWithHessian &
+  tiny_cube()
+  {
+    static const auto body = estep_test::cube_with_hessian(1);
+    return *body;
+  }
+
+  /** A ParameterHandler with the implicit subsection, and @p text parsed. */
+  void
+  parse(dealii::ParameterHandler &prm, const std::string &text)
+  {
+    estep::declare_implicit_parameters(prm);
+    prm.parse_input_from_string(text);
+  }
+
+  TEST(ImplicitParameters, DefaultsAndParsing)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm,
+          "subsection Implicit integrators\n"
+          "  set Maximum BDF order = 3\n"
+          "  set Linear solver = cg amg\n"
+          "  set Newton tolerance = 1e-9\n"
+          "end\n");
+    const estep::ImplicitParameters p = estep::parse_implicit_parameters(prm);
+    EXPECT_EQ(p.maximum_bdf_order, 3u);
+    EXPECT_EQ(p.linear_solver, estep::ImplicitLinearSolver::cg_amg);
+    EXPECT_EQ(p.newton_tolerance, 1e-9);
+    EXPECT_EQ(p.relative_tolerance,
+              estep::ImplicitParameters().relative_tolerance);
+  }
+
+  TEST(ImplicitParameters, OutOfBoundsRejected)
+  {
+    dealii::ParameterHandler prm;
+    EXPECT_ANY_THROW(parse(prm,
+                           "subsection Implicit integrators\n"
+                           "  set Maximum BDF order = 6\n"
+                           "end\n"));
+  }
+
+  TEST(CreateImplicitIntegrator, EveryMethodByName)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm, "");
+    for (const std::string method :
+         {"ida bdf", "arkode midpoint", "arkode irk", "energy momentum"})
+      {
+        const auto integrator =
+          estep::create_implicit_integrator(method, prm, tiny_cube(), 0.1);
+        EXPECT_EQ(integrator->name(), method);
+        const auto run = estep_test::run_cube(tiny_cube(), *integrator, 1.);
+        EXPECT_EQ(run.result.status, estep::RunStatus::completed)
+          << method << ": " << run.result.message;
+        EXPECT_DOUBLE_EQ(integrator->time(), 1.);
+        EXPECT_GT(estep_test::counter(run.counters, "newton iterations"), 0u);
+        EXPECT_GT(estep_test::counter(run.counters, "jacobian setups"), 0u);
+      }
+  }
+
+  TEST(CreateImplicitIntegrator, ClearErrors)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm, "");
+    try
+      {
+        estep::create_implicit_integrator("bdf9", prm, tiny_cube(), 0.1);
+        FAIL() << "no exception";
+      }
+    catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("Unknown implicit method"),
+                  std::string::npos);
+      }
+    // A system without a Hessian: a plain ElasticBody.
+    dealii::Triangulation<3> tria;
+    estep::make_seed_cube_mesh(tria, 1);
+    const estep::ElasticBody plain(
+      tria, std::make_shared<estep::NeoHookean>(0.01, 0.0066), 0.1);
+    try
+      {
+        estep::create_implicit_integrator("ida bdf", prm, plain, 0.1);
+        FAIL() << "no exception";
+      }
+    catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("Hessian"), std::string::npos);
+      }
+  }
+
+  /** Run @p method with a huge step and one Newton iteration. */
+  estep::TimeLoopResult
+  forced_failure(const std::string &method, const std::string &extra)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm,
+          "subsection Implicit integrators\n"
+          "  set Maximum Newton iterations = 1\n" +
+            extra + "end\n");
+    const auto integrator =
+      estep::create_implicit_integrator(method, prm, tiny_cube(), 5.);
+    const auto result =
+      estep_test::run_cube(tiny_cube(), *integrator, 20.).result;
+    testing::Test::RecordProperty("message", result.message);
+    return result;
+  }
+
+  TEST(ForcedFailure, ArkodeMidpointNewton)
+  {
+    const auto result = forced_failure("arkode midpoint", "");
+    EXPECT_EQ(result.status, estep::RunStatus::unstable);
+    EXPECT_NE(result.message.find("arkode midpoint failed at t = 0"),
+              std::string::npos)
+      << result.message;
+    EXPECT_NE(result.message.find("Newton iteration did not converge"),
+              std::string::npos)
+      << result.message;
+  }
+
+  TEST(ForcedFailure, EnergyMomentumNewton)
+  {
+    const auto result = forced_failure("energy momentum", "");
+    EXPECT_EQ(result.status, estep::RunStatus::unstable);
+    EXPECT_NE(result.message.find("energy momentum failed at t = 0"),
+              std::string::npos)
+      << result.message;
+    EXPECT_NE(result.message.find("did not converge in 1 iterations"),
+              std::string::npos)
+      << result.message;
+  }
+
+  TEST(ForcedFailure, IdaStepCollapse)
+  {
+    const auto result = forced_failure("ida bdf",
+                                       "  set Minimum step = 1\n"
+                                       "  set Relative tolerance = 1e-12\n"
+                                       "  set Absolute tolerance = 1e-14\n");
+    EXPECT_EQ(result.status, estep::RunStatus::unstable);
+    EXPECT_NE(result.message.find("ida bdf failed at t = "), std::string::npos)
+      << result.message;
+  }
+
+  TEST(ForcedFailure, ArkodeIrkStepCollapse)
+  {
+    const auto result = forced_failure("arkode irk",
+                                       "  set Minimum step = 1\n"
+                                       "  set Relative tolerance = 1e-12\n"
+                                       "  set Absolute tolerance = 1e-14\n");
+    EXPECT_EQ(result.status, estep::RunStatus::unstable);
+    EXPECT_NE(result.message.find("arkode irk failed at t = "),
+              std::string::npos)
+      << result.message;
+  }
+
+  TEST(ForcedFailure, IsAnImplicitSolverFailure)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm,
+          "subsection Implicit integrators\n"
+          "  set Maximum Newton iterations = 1\n"
+          "end\n");
+    const auto integrator = estep::create_implicit_integrator("energy momentum",
+                                                              prm,
+                                                              tiny_cube(),
+                                                              5.);
+    const estep::Vector q0 = tiny_cube().reference_configuration();
+    integrator->initialize(0.,
+                           q0,
+                           tiny_cube().rigid_velocity(q0,
+                                                      {{0., 0., 0.}},
+                                                      {{0., 0., 1.}},
+                                                      {{0.5, 0.5, 0.5}}));
+    EXPECT_THROW(integrator->step(20.), estep::ImplicitSolverFailure);
+  }
+} // namespace
