@@ -20,6 +20,15 @@ rc=$?
   -s "Output directory=stable" -s "Time integration/End time=4" > stable.log 2>&1 ||
   { cat stable.log; failures=$((failures + 1)); }
 
+# Field output through HDF5/XDMF on a coarse cube: one .h5 per output time, all in the series.
+"$ESTEP" "$prm" -s "Output directory=h5" -s "Elastic body/Mesh/Subdivisions=2" \
+  -s "Time integration/End time=1" -s "Output/Field output interval=0.5" \
+  -s "Output/Field output format=hdf5" > h5.log 2>&1 || { cat h5.log; failures=$((failures + 1)); }
+for k in 0 1 2; do
+  [[ -s h5/fields/solution-0000$k.h5 ]] || { echo "missing h5/fields/solution-0000$k.h5"; failures=$((failures + 1)); }
+done
+[[ $(grep -c "Time Value" h5/solution.xdmf) == 3 ]] || { echo "solution.xdmf does not list 3 times"; failures=$((failures + 1)); }
+
 /usr/bin/python3 - <<'PY' || failures=$((failures + 1))
 import csv, json, sys
 bad = []
