@@ -1,5 +1,6 @@
 #include <estep/contact/penalty_contact.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -127,6 +128,18 @@ namespace estep
 
 
 
+    void
+    PenaltyContact::set_exclusion_groups(std::vector<unsigned int> groups)
+    {
+      if (!groups.empty() && groups.size() != bvh.n_triangles())
+        throw std::invalid_argument(
+          "PenaltyContact::set_exclusion_groups: one group per triangle "
+          "expected");
+      exclusion_groups = std::move(groups);
+    }
+
+
+
     double
     PenaltyContact::evaluate(const double     *q,
                              const std::size_t n,
@@ -147,6 +160,8 @@ namespace estep
       Triangle3   T0, T1;
       for (const auto &[i, j] : pairs)
         {
+          if (excluded_by_group(i, j))
+            continue;
           gather(q, tris[i], T0);
           gather(q, tris[j], T1);
           std::array<double, 18> grad;
@@ -216,6 +231,14 @@ namespace estep
       BoundingVolumeHierarchy swept(bvh.get_triangles());
       swept.build_swept(q, v, n, s_max);
       swept.find_pairs(f.pairs);
+      if (!exclusion_groups.empty())
+        f.pairs.erase(std::remove_if(f.pairs.begin(),
+                                     f.pairs.end(),
+                                     [this](const auto &p) {
+                                       return excluded_by_group(p.first,
+                                                                p.second);
+                                     }),
+                      f.pairs.end());
       return f;
     }
 

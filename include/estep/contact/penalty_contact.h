@@ -86,6 +86,26 @@ namespace estep
         return bvh.get_triangles();
       }
 
+      /**
+       * Exclude every pair of triangles i, j with groups[i] == groups[j] (e.g.
+       * the body number of each triangle, to switch self-contact off). An
+       * empty vector (the default) excludes nothing beyond pairs that share a
+       * vertex. Throws std::invalid_argument if the size differs from the
+       * number of triangles.
+       */
+      void
+      set_exclusion_groups(std::vector<unsigned int> groups);
+
+      /** Whether the pair (i, j) of triangle numbers is excluded by the
+       * exclusion groups (pairs sharing a vertex are excluded by the broad
+       * phase). */
+      bool
+      excluded_by_group(const unsigned int i, const unsigned int j) const
+      {
+        return !exclusion_groups.empty() &&
+               exclusion_groups[i] == exclusion_groups[j];
+      }
+
       /** Rebuild the hierarchy every this many refits (default 64). */
       void
       set_rebuild_interval(const unsigned int interval)
@@ -157,6 +177,7 @@ namespace estep
                unsigned int     *count) const;
 
       double                          eps;
+      std::vector<unsigned int>       exclusion_groups;
       unsigned int                    rebuild_every = 64;
       mutable unsigned int            n_refits      = 0;
       mutable BoundingVolumeHierarchy bvh;

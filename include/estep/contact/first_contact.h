@@ -1,0 +1,90 @@
+#ifndef estep_contact_first_contact_h
+#define estep_contact_first_contact_h
+
+#include <estep/contact/bounding_volume_hierarchy.h>
+#include <estep/contact/continuous_collision.h>
+#include <estep/contact/predicates.h>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace estep
+{
+  namespace contact
+  {
+    /**
+     * The first contact of two boundary primitives along a free flight, and
+     * the gradient of their contact distance (the reflection normal).
+     */
+    struct FirstContact
+    {
+      /** Flight parameter of the contact (never later than the exact first
+       * contact of the primitives). */
+      double s = 0.;
+      /** true: edge-edge (a0, a1, b0, b1); false: vertex-face (p, f0, f1, f2).
+       */
+      bool edge_edge = false;
+      /** The four point indices. */
+      std::array<unsigned int, 4> points = {{0, 0, 0, 0}};
+      /**
+       * The gradient of the contact distance with respect to point k is
+       * weights[k] * normal. Vertex-face: (1, -w0, -w1, -w2) with w the
+       * barycentric coordinates of the orthogonal projection of p on the face
+       * plane; edge-edge: (1 - a, a, -(1 - b), -b) with a, b the parameters of
+       * the closest points of the two lines. The weights sum to zero (no net
+       * force) and the lever arms are parallel to the normal (no net torque).
+       */
+      std::array<double, 4> weights = {{0., 0., 0., 0.}};
+      /** Unit normal, oriented so that the distance grows when the first
+       * primitive moves along it. */
+      Point3 normal = {{0., 0., 0.}};
+    };
+
+    /**
+     * The earliest vertex-face or edge-edge contact along the flight q + s v,
+     * 0 <= s <= s_max, between the surface triangles @p triangles (point
+     * indices into q; pairs that share a vertex, and pairs in the same
+     * exclusion group if @p groups is not empty, never touch).
+     *
+     * Candidate triangle pairs come from boxes swept over the flight; each
+     * candidate yields 6 vertex-face and 9 edge-edge queries (duplicates
+     * removed) for the conservative CCD (vertex_face_ccd(), edge_edge_ccd()),
+     * whose times are never later than the exact contact times.
+     *
+     * Contacts at the start (the rule that avoids sticking and zero-length
+     * steps right after a reflection): a primitive pair whose distance at s =
+     * 0 is at most 2 sqrt(3) tolerance and whose distance rate (gradient .
+     * v) is >= 0 is separating; it is ignored on [0, s1] with s1 = 8
+     * tolerance / rate and examined by the CCD on [s1, s_max]. A pair that
+     * touches at s = 0 and approaches (rate < 0) is reported at s = 0 (several
+     * simultaneous contacts are then resolved one by one).
+     *
+     * Returns nothing if no contact occurs on [0, s_max].
+     */
+    std::optional<FirstContact>
+    find_first_contact(const std::vector<TriangleIndices> &triangles,
+                       const std::vector<unsigned int>    &groups,
+                       const double                       *q,
+                       const double                       *v,
+                       const std::size_t                   n,
+                       const double                        s_max,
+                       const CcdSettings &settings = CcdSettings());
+
+    /**
+     * The contact normal and weights (see FirstContact) of the primitive pair
+     * @p points at the positions @p x (point i at x[3 i]); @p edge_edge
+     * selects the kind. @p orientation is a direction the normal should have
+     * a positive component along (e.g. the outward normal of the face, or the
+     * difference of the outward normals); the result has s = 0.
+     */
+    FirstContact
+    contact_normal(const std::array<unsigned int, 4> &points,
+                   const bool                         edge_edge,
+                   const double                      *x,
+                   const Point3                      &orientation);
+  } // namespace contact
+} // namespace estep
+
+#endif

@@ -1,0 +1,179 @@
+#ifndef estep_systems_contact_system_h
+#define estep_systems_contact_system_h
+
+#include <estep/contact/bounding_volume_hierarchy.h>
+#include <estep/systems/contact_parameters.h>
+#include <estep/systems/mechanical_system.h>
+#include <estep/systems/rigid_body_motion.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  class ElasticBody;
+
+  namespace contact
+  {
+    class PenaltyContact;
+  } // namespace contact
+
+  /**
+   * Several elastic bodies with contact between their boundaries, as one
+   * MechanicalSystem.
+   *
+   * Coordinates: the points of all bodies concatenated, point-major; body b's
+   * points follow its own numbering (ElasticBody) shifted by point_offset(b),
+   * the sum of the point counts of the earlier bodies. The inverse mass is the
+   * concatenation of the bodies' lumped inverse masses.
+   *
+   * Potential: V(q) = sum_b V_b(q_b) + I(q), with I the contact term:
+   * - ContactParameters::Mode::penalty: I = 1/(2 eps) sum g over pairs of
+   *   boundary triangles (contact::PenaltyContact), g = |A - B|^2 of their
+   *   intersection segment; the free flight adds contact::PenaltyFlight with
+   *   rigorous enclosures of I and dI/ds;
+   * - impenetrability: I = 0 and first_constraint_event() reports the first
+   *   vertex-face or edge-edge contact along a flight
+   *   (contact::find_first_contact()) with the gradient of the contact
+   *   distance as the normal;
+   * - none: I = 0.
+   * Pairs of triangles of the same body count only with self-contact on, and
+   * never when they share a vertex.
+   *
+   * The boundary triangles come from contact::boundary_triangles() on each
+   * body's triangulation, mapped from triangulation vertex numbers to the
+   * body's point numbers (through its DoFHandler, checked against the
+   * reference positions).
+   *
+   * Not thread-safe (caches in the bodies and the contact term).
+   */
+  class ContactSystem : public MechanicalSystem
+  {
+  public:
+    /**
+     * The system of @p bodies (at least one) interacting as @p parameters say.
+     * Throws std::invalid_argument for an empty list or a bad parameter.
+     */
+    ContactSystem(std::vector<std::shared_ptr<const ElasticBody>> bodies,
+                  const ContactParameters                        &parameters,
+                  const std::string &name = "contact system");
+
+    ~ContactSystem() override;
+
+    std::string
+    name() const override;
+
+    /** Always 3. */
+    unsigned int
+    spatial_dimension() const override;
+
+    unsigned int
+    n_dofs() const override;
+
+    const Vector &
+    inverse_mass() const override;
+
+    /** Sum of the body energies plus the contact term; +infinity if a body
+     * is inadmissible. */
+    double
+    energy(const Vector &q) const override;
+
+    void
+    gradient(const Vector &q, Vector &g) const override;
+
+    /** Sum of the bodies' ElasticFreeFlight and, in penalty mode, the
+     * PenaltyFlight; enclosures are sums of enclosures. */
+    std::unique_ptr<FreeFlight>
+    free_flight(const Vector &q, const Vector &v) const override;
+
+    /** Impenetrability mode: the first contact along q + s v, 0 <= s <=
+     * s_max (see contact::find_first_contact() for the rule at s = 0). None
+     * in the other modes. */
+    std::optional<ConstraintEvent>
+    first_constraint_event(const Vector &q,
+                           const Vector &v,
+                           const double  s_max) const override;
+
+    /**
+     * For each body b = 1, 2, ...: "V<b>_x", "V<b>_y", "V<b>_z" (centre-of-mass
+     * velocity) and "Omega<b>_x", ... (angular momentum about its centre of
+     * mass / its mass); then "V_x", ..., "Omega_x", ... of the whole system
+     * (about the system's centre of mass), and "intersecting pairs" (number
+     * of intersecting pairs of boundary triangles, exact test).
+     */
+    std::vector<std::string>
+    observable_names() const override;
+
+    /** The values named by observable_names(). */
+    std::vector<double>
+    observables(const Vector &q, const Vector &v) const override;
+
+    /** Number of bodies. */
+    unsigned int
+    n_bodies() const;
+
+    /** Body @p b. */
+    const ElasticBody &
+    body(const unsigned int b) const;
+
+    /** The global number of body @p b's first point. */
+    unsigned int
+    point_offset(const unsigned int b) const;
+
+    /** The global state made of one vector per body (sizes as the bodies'
+     * n_dofs()). */
+    Vector
+    concatenate(const std::vector<Vector> &per_body) const;
+
+    /** Body @p b's part of the global vector @p x. */
+    Vector
+    extract(const Vector &x, const unsigned int b) const;
+
+    /** The boundary triangles of all bodies, in global point numbers. */
+    const std::vector<contact::TriangleIndices> &
+    boundary_triangles() const;
+
+    /** The body of each boundary triangle. */
+    const std::vector<unsigned int> &
+    triangle_bodies() const;
+
+    /** The contact parameters. */
+    const ContactParameters &
+    parameters() const;
+
+    /** The contact term I(q) alone (0 unless in penalty mode). */
+    double
+    contact_energy(const Vector &q) const;
+
+    /**
+     * Number of pairs of boundary triangles that intersect at q (exact test,
+     * contact::triangles_intersect(); pairs sharing a vertex excluded, pairs
+     * of one body only with self-contact), whatever the mode.
+     */
+    unsigned int
+    n_intersecting_pairs(const Vector &q) const;
+
+    /** Rigid motion of body @p b at (q, v). */
+    RigidBodyMotion
+    body_motion(const Vector &q, const Vector &v, const unsigned int b) const;
+
+    /** Rigid motion of the whole system at (q, v). */
+    RigidBodyMotion
+    system_motion(const Vector &q, const Vector &v) const;
+
+  private:
+    std::string                                     system_name;
+    std::vector<std::shared_ptr<const ElasticBody>> bodies;
+    ContactParameters                               contact_parameters;
+    std::vector<unsigned int>                       offsets;
+    Vector                                          inv_mass;
+    std::vector<contact::TriangleIndices>           triangles;
+    std::vector<unsigned int>                       triangle_body;
+    std::vector<unsigned int>                       exclusion_groups;
+    std::unique_ptr<contact::PenaltyContact>        penalty;
+    mutable std::vector<Vector>                     scratch_q, scratch_g;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,296 @@
+#include <estep/contact/first_contact.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+
+namespace estep
+{
+  namespace contact
+  {
+    namespace
+    {
+      constexpr double unit = std::numeric_limits<double>::epsilon() / 2.;
+
+      inline Point3
+      minus(const Point3 &a, const Point3 &b)
+      {
+        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
+      }
+
+      inline Point3
+      cross(const Point3 &a, const Point3 &b)
+      {
+        return {{a[1] * b[2] - a[2] * b[1],
+                 a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]}};
+      }
+
+      inline double
+      dot(const Point3 &a, const Point3 &b)
+      {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      }
+
+      inline Point3
+      point(const double *x, const unsigned int i)
+      {
+        return {{x[3 * i], x[3 * i + 1], x[3 * i + 2]}};
+      }
+
+      inline Point3
+      unit_normal(const double *x, const TriangleIndices &t)
+      {
+        Point3       n = cross(minus(point(x, t[1]), point(x, t[0])),
+                         minus(point(x, t[2]), point(x, t[0])));
+        const double l = std::sqrt(dot(n, n));
+        if (l > 0.)
+          for (double &c : n)
+            c /= l;
+        return n;
+      }
+
+      /** One primitive query: the points and an orientation hint. */
+      struct Query
+      {
+        bool                        edge_edge;
+        std::array<unsigned int, 4> points;
+        Point3                      orientation;
+
+        std::tuple<bool, unsigned int, unsigned int, unsigned int, unsigned int>
+        key() const
+        {
+          return {edge_edge, points[0], points[1], points[2], points[3]};
+        }
+      };
+
+      // Distance and its rate along the flight for the normal of c at x.
+      inline std::pair<double, double>
+      distance_and_rate(const FirstContact &c, const double *x, const double *v)
+      {
+        double d = 0., r = 0.;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            d += c.weights[k] * dot(c.normal, point(x, c.points[k]));
+            r += c.weights[k] * dot(c.normal, point(v, c.points[k]));
+          }
+        return {d, r};
+      }
+    } // namespace
+
+
+
+    FirstContact
+    contact_normal(const std::array<unsigned int, 4> &points,
+                   const bool                         edge_edge,
+                   const double                      *x,
+                   const Point3                      &orientation)
+    {
+      FirstContact c;
+      c.edge_edge = edge_edge;
+      c.points    = points;
+      Point3 n;
+      if (!edge_edge)
+        {
+          const Point3 p = point(x, points[0]), a = point(x, points[1]),
+                       b = point(x, points[2]), cc = point(x, points[3]);
+          const Point3 e1 = minus(b, a), e2 = minus(cc, a), r = minus(p, a);
+          n              = cross(e1, e2);
+          const double A = dot(e1, e1), B = dot(e1, e2), C = dot(e2, e2);
+          const double det = A * C - B * B;
+          double       u = 1. / 3., w = 1. / 3.;
+          if (det > 0.)
+            {
+              u = (C * dot(e1, r) - B * dot(e2, r)) / det;
+              w = (A * dot(e2, r) - B * dot(e1, r)) / det;
+            }
+          c.weights = {{1., -(1. - u - w), -u, -w}};
+        }
+      else
+        {
+          const Point3 a0 = point(x, points[0]), a1 = point(x, points[1]),
+                       b0 = point(x, points[2]), b1 = point(x, points[3]);
+          const Point3 da = minus(a1, a0), db = minus(b1, b0),
+                       r = minus(a0, b0);
+          const double A = dot(da, da), B = dot(da, db), C = dot(db, db);
+          const double D = dot(da, r), E = dot(db, r);
+          const double det = A * C - B * B;
+          n                = cross(da, db);
+          double sa = 0.5, sb = 0.5;
+          if (det > 1e-14 * A * C && det > 0.)
+            {
+              sa = (B * E - C * D) / det;
+              sb = (A * E - B * D) / det;
+            }
+          else
+            {
+              // Parallel edges: the midpoint of a and its projection on b;
+              // the normal along their difference keeps the torque zero.
+              if (C > 0.)
+                sb = (dot(db, r) + 0.5 * B) / C;
+              Point3 d;
+              for (unsigned int k = 0; k < 3; ++k)
+                d[k] = (a0[k] + sa * da[k]) - (b0[k] + sb * db[k]);
+              n = d;
+              if (dot(n, n) == 0.)
+                {
+                  // Touching: any direction perpendicular to the edges.
+                  const unsigned int axis =
+                    std::abs(da[0]) <= std::abs(da[1]) ?
+                      (std::abs(da[0]) <= std::abs(da[2]) ? 0 : 2) :
+                      (std::abs(da[1]) <= std::abs(da[2]) ? 1 : 2);
+                  Point3 e = {{0., 0., 0.}};
+                  e[axis]  = 1.;
+                  n        = cross(da, e);
+                }
+            }
+          c.weights = {{1. - sa, sa, -(1. - sb), -sb}};
+        }
+      double l = std::sqrt(dot(n, n));
+      if (!(l > 0.))
+        {
+          n = orientation;
+          l = std::sqrt(dot(n, n));
+        }
+      if (l > 0.)
+        for (double &k : n)
+          k /= l;
+      if (dot(n, orientation) < 0.)
+        for (double &k : n)
+          k = -k;
+      c.normal = n;
+      return c;
+    }
+
+
+
+    std::optional<FirstContact>
+    find_first_contact(const std::vector<TriangleIndices> &triangles,
+                       const std::vector<unsigned int>    &groups,
+                       const double                       *q,
+                       const double                       *v,
+                       const std::size_t                   n,
+                       const double                        s_max,
+                       const CcdSettings                  &settings)
+    {
+      if (!(s_max >= 0.) || !std::isfinite(s_max))
+        throw std::invalid_argument(
+          "find_first_contact: s_max must be finite and >= 0");
+      if (triangles.empty())
+        return std::nullopt;
+      double max_q = 0., max_v = 0.;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          max_q = std::max(max_q, std::abs(q[i]));
+          max_v = std::max(max_v, std::abs(v[i]));
+        }
+      // Boxes enlarged by the tolerance: pairs that come within it are
+      // examined (the CCD may report them).
+      BoundingVolumeHierarchy bvh(triangles);
+      bvh.build_swept(q,
+                      v,
+                      n,
+                      s_max,
+                      settings.tolerance + 8. * unit * (max_q + s_max * max_v));
+      std::vector<std::pair<unsigned int, unsigned int>> pairs;
+      bvh.find_pairs(pairs);
+
+      std::vector<Query> queries;
+      for (const auto &[i, j] : pairs)
+        {
+          if (!groups.empty() && groups[i] == groups[j])
+            continue;
+          const TriangleIndices &Ti = triangles[i], &Tj = triangles[j];
+          const Point3 ni = unit_normal(q, Ti), nj = unit_normal(q, Tj);
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              queries.push_back({false, {{Ti[k], Tj[0], Tj[1], Tj[2]}}, nj});
+              queries.push_back({false, {{Tj[k], Ti[0], Ti[1], Ti[2]}}, ni});
+            }
+          const Point3 o = minus(nj, ni);
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              {
+                std::array<unsigned int, 2> ea = {{Ti[a], Ti[(a + 1) % 3]}},
+                                            eb = {{Tj[b], Tj[(b + 1) % 3]}};
+                if (ea[0] > ea[1])
+                  std::swap(ea[0], ea[1]);
+                if (eb[0] > eb[1])
+                  std::swap(eb[0], eb[1]);
+                queries.push_back({true, {{ea[0], ea[1], eb[0], eb[1]}}, o});
+              }
+        }
+      std::sort(queries.begin(),
+                queries.end(),
+                [](const Query &a, const Query &b) {
+                  return a.key() < b.key();
+                });
+      queries.erase(std::unique(queries.begin(),
+                                queries.end(),
+                                [](const Query &a, const Query &b) {
+                                  return a.key() == b.key();
+                                }),
+                    queries.end());
+
+      const double touching = 2. * std::sqrt(3.) * settings.tolerance;
+      double       best     = s_max;
+      const Query *found    = nullptr;
+      for (const Query &query : queries)
+        {
+          const FirstContact start =
+            contact_normal(query.points, query.edge_edge, q, query.orientation);
+          const auto [distance, rate] = distance_and_rate(start, q, v);
+          double s0                   = 0.;
+          if (std::abs(distance) <= touching)
+            {
+              if (rate < 0.)
+                {
+                  // Touching and approaching: a contact now.
+                  best  = 0.;
+                  found = &query;
+                  break;
+                }
+              if (rate == 0.)
+                continue;
+              s0 = 8. * settings.tolerance / rate;
+            }
+          if (s0 >= best)
+            continue;
+          std::array<Point3, 4> x0, x1;
+          for (unsigned int k = 0; k < 4; ++k)
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                const unsigned int m = 3 * query.points[k] + c;
+                x0[k][c]             = q[m] + s0 * v[m];
+                x1[k][c]             = q[m] + best * v[m];
+              }
+          const CcdResult r = query.edge_edge ?
+                                edge_edge_ccd(x0, x1, settings) :
+                                vertex_face_ccd(x0, x1, settings);
+          if (!r.hit)
+            continue;
+          double s = s0 + r.time * (best - s0);
+          s        = std::max(s0, s - 4. * unit * s);
+          if (s < best || found == nullptr)
+            {
+              best  = std::min(best, s);
+              found = &query;
+            }
+        }
+      if (found == nullptr)
+        return std::nullopt;
+
+      std::vector<double> x(n);
+      for (std::size_t i = 0; i < n; ++i)
+        x[i] = q[i] + best * v[i];
+      FirstContact c = contact_normal(found->points,
+                                      found->edge_edge,
+                                      x.data(),
+                                      found->orientation);
+      c.s            = best;
+      return c;
+    }
+  } // namespace contact
+} // namespace estep

@@ -1,0 +1,466 @@
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/contact/boundary_triangles.h>
+#include <estep/contact/first_contact.h>
+#include <estep/contact/penalty_contact.h>
+#include <estep/contact/penalty_flight.h>
+#include <estep/contact/triangle_intersection.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/elastic_free_flight.h>
+#include <estep/systems/contact_system.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+
+    /** The free flight of a ContactSystem: the bodies' flights plus the
+     * penalty flight. */
+    class ContactFreeFlight : public FreeFlight
+    {
+    public:
+      ContactFreeFlight(const ContactSystem           &system,
+                        const contact::PenaltyContact *penalty,
+                        const Vector                  &q,
+                        const Vector                  &v)
+      {
+        for (unsigned int b = 0; b < system.n_bodies(); ++b)
+          bodies.push_back(
+            system.body(b).make_free_flight(system.extract(q, b),
+                                            system.extract(v, b)));
+        if (penalty != nullptr)
+          penalty_flight = std::make_unique<contact::PenaltyFlight>(*penalty,
+                                                                    q.data(),
+                                                                    v.data(),
+                                                                    q.size());
+      }
+
+      double
+      value(const double s) const override
+      {
+        double total = 0.;
+        for (const auto &f : bodies)
+          total += f->value(s);
+        if (!std::isfinite(total))
+          return infinity;
+        if (penalty_flight)
+          total += penalty_flight->value(s);
+        return total;
+      }
+
+      LineValue
+      value_and_derivative(const double s) const override
+      {
+        LineValue total = {0., 0.};
+        for (const auto &f : bodies)
+          {
+            const LineValue l = f->value_and_derivative(s);
+            total.value += l.value;
+            total.derivative += l.derivative;
+          }
+        if (!std::isfinite(total.value))
+          return {infinity, total.derivative};
+        if (penalty_flight)
+          {
+            const auto [value, slope] = penalty_flight->value_and_derivative(s);
+            total.value += value;
+            total.derivative += slope;
+          }
+        return total;
+      }
+
+      LineEnclosure
+      enclose(const double a, const double b) const override
+      {
+        LineEnclosure total = {{0., 0.}, {0., 0.}};
+        for (const auto &f : bodies)
+          {
+            const LineEnclosure e = f->enclose(a, b);
+            total.value += e.value;
+            total.derivative += e.derivative;
+          }
+        if (penalty_flight)
+          {
+            const contact::PenaltyEnclosure e = penalty_flight->enclose(a, b);
+            total.value += e.value;
+            total.derivative += e.derivative;
+          }
+        return total;
+      }
+
+      double
+      admissible_limit() const override
+      {
+        double limit = infinity;
+        for (const auto &f : bodies)
+          limit = std::min(limit, f->admissible_limit());
+        return limit;
+      }
+
+    private:
+      std::vector<std::unique_ptr<ElasticFreeFlight>> bodies;
+      std::unique_ptr<contact::PenaltyFlight>         penalty_flight;
+    };
+  } // namespace
+
+
+
+  ContactSystem::ContactSystem(
+    std::vector<std::shared_ptr<const ElasticBody>> bodies_in,
+    const ContactParameters                        &parameters,
+    const std::string                              &name)
+    : system_name(name)
+    , bodies(std::move(bodies_in))
+    , contact_parameters(parameters)
+  {
+    if (bodies.empty())
+      throw std::invalid_argument("ContactSystem: no bodies");
+    unsigned int n_points = 0;
+    for (const auto &body : bodies)
+      {
+        if (!body)
+          throw std::invalid_argument("ContactSystem: a body is missing");
+        offsets.push_back(n_points);
+        n_points += body->n_vertices();
+      }
+    offsets.push_back(n_points);
+
+    inv_mass.reinit(3 * n_points);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const Vector &m = bodies[b]->inverse_mass();
+        for (unsigned int i = 0; i < m.size(); ++i)
+          inv_mass[3 * offsets[b] + i] = m[i];
+      }
+
+    // Boundary triangles in global point numbers.
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const ElasticBody        &body = *bodies[b];
+        const auto               &tria = body.triangulation();
+        std::vector<unsigned int> point_of_vertex(
+          tria.n_vertices(), std::numeric_limits<unsigned int>::max());
+        const Vector X = body.reference_configuration();
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const unsigned int point = cell->vertex_dof_index(v, 0) / 3;
+              const auto        &x     = cell->vertex(v);
+              for (unsigned int c = 0; c < 3; ++c)
+                if (std::abs(X[3 * point + c] - x[c]) >
+                    1e-12 * (1. + std::abs(x[c])))
+                  throw std::logic_error(
+                    "ContactSystem: the point numbering of body " +
+                    std::to_string(b) + " does not follow its DoFHandler");
+              point_of_vertex[cell->vertex_index(v)] = point;
+            }
+        for (const auto &t : contact::boundary_triangles(tria))
+          {
+            contact::TriangleIndices global;
+            for (unsigned int k = 0; k < 3; ++k)
+              global[k] = offsets[b] + point_of_vertex[t[k]];
+            triangles.push_back(global);
+            triangle_body.push_back(b);
+          }
+      }
+    if (!contact_parameters.self_contact)
+      exclusion_groups = triangle_body;
+
+    if (contact_parameters.mode == ContactParameters::Mode::penalty)
+      {
+        if (!(contact_parameters.penalty_parameter > 0.))
+          throw std::invalid_argument(
+            "ContactSystem: the penalty parameter must be positive");
+        penalty = std::make_unique<contact::PenaltyContact>(
+          triangles, contact_parameters.penalty_parameter);
+        penalty->set_exclusion_groups(exclusion_groups);
+      }
+    if (!(contact_parameters.ccd_tolerance > 0.))
+      throw std::invalid_argument(
+        "ContactSystem: the collision tolerance must be positive");
+    scratch_q.resize(bodies.size());
+    scratch_g.resize(bodies.size());
+  }
+
+
+
+  ContactSystem::~ContactSystem() = default;
+
+
+
+  std::string
+  ContactSystem::name() const
+  {
+    return system_name;
+  }
+
+
+
+  unsigned int
+  ContactSystem::spatial_dimension() const
+  {
+    return 3;
+  }
+
+
+
+  unsigned int
+  ContactSystem::n_dofs() const
+  {
+    return 3 * offsets.back();
+  }
+
+
+
+  const Vector &
+  ContactSystem::inverse_mass() const
+  {
+    return inv_mass;
+  }
+
+
+
+  double
+  ContactSystem::energy(const Vector &q) const
+  {
+    double total = 0.;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        scratch_q[b] = extract(q, b);
+        total += bodies[b]->energy(scratch_q[b]);
+      }
+    if (!std::isfinite(total))
+      return infinity;
+    return total + contact_energy(q);
+  }
+
+
+
+  void
+  ContactSystem::gradient(const Vector &q, Vector &g) const
+  {
+    g.reinit(q.size());
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        scratch_q[b] = extract(q, b);
+        bodies[b]->gradient(scratch_q[b], scratch_g[b]);
+        for (unsigned int i = 0; i < scratch_g[b].size(); ++i)
+          g[3 * offsets[b] + i] = scratch_g[b][i];
+      }
+    if (penalty)
+      penalty->add_gradient(q.data(), q.size(), g.data());
+  }
+
+
+
+  std::unique_ptr<FreeFlight>
+  ContactSystem::free_flight(const Vector &q, const Vector &v) const
+  {
+    return std::make_unique<ContactFreeFlight>(*this, penalty.get(), q, v);
+  }
+
+
+
+  std::optional<ConstraintEvent>
+  ContactSystem::first_constraint_event(const Vector &q,
+                                        const Vector &v,
+                                        const double  s_max) const
+  {
+    if (contact_parameters.mode != ContactParameters::Mode::impenetrability)
+      return std::nullopt;
+    contact::CcdSettings settings;
+    settings.tolerance = contact_parameters.ccd_tolerance;
+    const auto c       = contact::find_first_contact(triangles,
+                                               exclusion_groups,
+                                               q.data(),
+                                               v.data(),
+                                               q.size(),
+                                               s_max,
+                                               settings);
+    if (!c)
+      return std::nullopt;
+    ConstraintEvent event;
+    event.s = c->s;
+    event.normal.reinit(q.size());
+    for (unsigned int k = 0; k < 4; ++k)
+      for (unsigned int d = 0; d < 3; ++d)
+        event.normal[3 * c->points[k] + d] += c->weights[k] * c->normal[d];
+    return event;
+  }
+
+
+
+  std::vector<std::string>
+  ContactSystem::observable_names() const
+  {
+    std::vector<std::string> names;
+    const auto               add = [&names](const std::string &suffix) {
+      for (const char *quantity : {"V", "Omega"})
+        for (const char *axis : {"_x", "_y", "_z"})
+          names.push_back(quantity + suffix + axis);
+    };
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      add(std::to_string(b + 1));
+    add("");
+    names.emplace_back("intersecting pairs");
+    return names;
+  }
+
+
+
+  std::vector<double>
+  ContactSystem::observables(const Vector &q, const Vector &v) const
+  {
+    std::vector<double> values;
+    const auto          add = [&values](const RigidBodyMotion &m) {
+      values.insert(values.end(), m.velocity.begin(), m.velocity.end());
+      values.insert(values.end(), m.angular.begin(), m.angular.end());
+    };
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      add(body_motion(q, v, b));
+    add(system_motion(q, v));
+    values.push_back(n_intersecting_pairs(q));
+    return values;
+  }
+
+
+
+  unsigned int
+  ContactSystem::n_bodies() const
+  {
+    return bodies.size();
+  }
+
+
+
+  const ElasticBody &
+  ContactSystem::body(const unsigned int b) const
+  {
+    return *bodies.at(b);
+  }
+
+
+
+  unsigned int
+  ContactSystem::point_offset(const unsigned int b) const
+  {
+    return offsets.at(b);
+  }
+
+
+
+  Vector
+  ContactSystem::concatenate(const std::vector<Vector> &per_body) const
+  {
+    if (per_body.size() != bodies.size())
+      throw std::invalid_argument("ContactSystem::concatenate: one vector per "
+                                  "body expected");
+    Vector x(n_dofs());
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        if (per_body[b].size() != bodies[b]->n_dofs())
+          throw std::invalid_argument(
+            "ContactSystem::concatenate: wrong size for body " +
+            std::to_string(b));
+        for (unsigned int i = 0; i < per_body[b].size(); ++i)
+          x[3 * offsets[b] + i] = per_body[b][i];
+      }
+    return x;
+  }
+
+
+
+  Vector
+  ContactSystem::extract(const Vector &x, const unsigned int b) const
+  {
+    Vector part(bodies.at(b)->n_dofs());
+    for (unsigned int i = 0; i < part.size(); ++i)
+      part[i] = x[3 * offsets[b] + i];
+    return part;
+  }
+
+
+
+  const std::vector<contact::TriangleIndices> &
+  ContactSystem::boundary_triangles() const
+  {
+    return triangles;
+  }
+
+
+
+  const std::vector<unsigned int> &
+  ContactSystem::triangle_bodies() const
+  {
+    return triangle_body;
+  }
+
+
+
+  const ContactParameters &
+  ContactSystem::parameters() const
+  {
+    return contact_parameters;
+  }
+
+
+
+  double
+  ContactSystem::contact_energy(const Vector &q) const
+  {
+    return penalty ? penalty->energy(q.data(), q.size()) : 0.;
+  }
+
+
+
+  unsigned int
+  ContactSystem::n_intersecting_pairs(const Vector &q) const
+  {
+    contact::BoundingVolumeHierarchy bvh(triangles);
+    bvh.build(q.data(), q.size());
+    std::vector<std::pair<unsigned int, unsigned int>> pairs;
+    bvh.find_pairs(pairs);
+    unsigned int       count = 0;
+    contact::Triangle3 T[2];
+    for (const auto &[i, j] : pairs)
+      {
+        if (!exclusion_groups.empty() &&
+            exclusion_groups[i] == exclusion_groups[j])
+          continue;
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              T[0][k][d] = q[3 * triangles[i][k] + d];
+              T[1][k][d] = q[3 * triangles[j][k] + d];
+            }
+        if (contact::triangles_intersect(T[0], T[1]))
+          ++count;
+      }
+    return count;
+  }
+
+
+
+  RigidBodyMotion
+  ContactSystem::body_motion(const Vector      &q,
+                             const Vector      &v,
+                             const unsigned int b) const
+  {
+    return rigid_body_motion(
+      inv_mass, q, v, offsets.at(b), offsets.at(b + 1) - offsets.at(b));
+  }
+
+
+
+  RigidBodyMotion
+  ContactSystem::system_motion(const Vector &q, const Vector &v) const
+  {
+    return rigid_body_motion(inv_mass, q, v, 0, offsets.back());
+  }
+} // namespace estep

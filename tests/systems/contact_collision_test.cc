@@ -1,0 +1,168 @@
+// Energy-stepping through collisions of two small balls: penalty and exact
+// impenetrability, conservation of the terraced energy and the momenta, no
+// interpenetration, no tunnelling at high speed.
+
+#include <estep/systems/contact_system.h>
+#include <estep/time_integration/energy_stepping.h>
+
+#include <gtest/gtest.h>
+
+#include "contact_test_bodies.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+using estep::ContactParameters;
+using estep::Vector;
+
+namespace
+{
+  struct RunFigures
+  {
+    unsigned long steps = 0, constraint_events = 0;
+    double        energy_error = 0., linear_error = 0., angular_error = 0.;
+    unsigned int  max_intersecting_pairs  = 0;
+    double        min_distance_of_centres = 1e300;
+    estep::RigidBodyMotion final_1, final_2;
+  };
+
+  double
+  norm3(const double *x)
+  {
+    return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  }
+
+  /** Ball 2 moves towards ball 1 (at rest) with @p speed, spinning with 0.5
+   * speed about y; energy step h = fraction of the initial kinetic energy. */
+  RunFigures
+  collide(const ContactParameters &parameters,
+          const double             speed,
+          const double             lambda0,
+          const double             mu0,
+          const double             h_fraction,
+          const double             t_end,
+          const bool               check_intersections)
+  {
+    const double gap = 0.1;
+    const auto   system =
+      estep_test::two_balls(2. + gap, 0.6, parameters, lambda0, mu0, 1.);
+    // A small random deformation puts V(q0) well inside a terrace (the
+    // undeformed state has V = 0 to round-off, exactly on a level, where the
+    // enclosures cannot separate V from the level).
+    Vector q0 = estep_test::reference(*system);
+    q0 += estep_test::random_vector(q0.size(), 1e-3, 11);
+    // Slightly off-centre to make the contact generic and the angular momentum
+    // about the origin non-trivial.
+    const Vector v0 =
+      estep_test::rigid_velocities(*system,
+                                   q0,
+                                   {{{0., 0., 0.}},
+                                    {{-speed, 0.05 * speed, 0.}}},
+                                   {{{0., 0., 0.}}, {{0., 0.5 * speed, 0.}}});
+    const double T0 = estep::kinetic_energy(*system, v0);
+
+    estep::EnergyStepping integrator(*system, h_fraction * T0);
+    integrator.initialize(0., q0, v0);
+    const double         E0 = integrator.terraced_energy();
+    const estep::Momenta m0 = estep::compute_momenta(*system, q0, v0);
+    RunFigures           r;
+    const char          *limit_env = std::getenv("ESTEP_TEST_T_END");
+    const double         t_stop    = limit_env ? std::atof(limit_env) : t_end;
+    while (integrator.time() < t_stop)
+      {
+        integrator.step(t_stop);
+        ++r.steps;
+        const Vector &q = integrator.position();
+        const Vector &v = integrator.velocity();
+        r.energy_error =
+          std::max(r.energy_error,
+                   std::abs(integrator.terraced_energy() - E0) / E0);
+        const estep::Momenta m = estep::compute_momenta(*system, q, v);
+        double               dl[3], da[3];
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            dl[d] = m.linear[d] - m0.linear[d];
+            da[d] = m.angular[d] - m0.angular[d];
+          }
+        r.linear_error = std::max(r.linear_error, norm3(dl) / norm3(m0.linear));
+        r.angular_error =
+          std::max(r.angular_error, norm3(da) / norm3(m0.angular));
+        const auto b1 = system->body_motion(q, v, 0);
+        const auto b2 = system->body_motion(q, v, 1);
+        double     c[3];
+        for (unsigned int d = 0; d < 3; ++d)
+          c[d] = b2.centre[d] - b1.centre[d];
+        r.min_distance_of_centres =
+          std::min(r.min_distance_of_centres, norm3(c));
+        if (check_intersections)
+          r.max_intersecting_pairs =
+            std::max(r.max_intersecting_pairs, system->n_intersecting_pairs(q));
+        if (std::getenv("ESTEP_TEST_VERBOSE") && r.steps % 1000 == 0)
+          std::cout << "step " << r.steps << " t = " << integrator.time()
+                    << std::endl;
+        if (r.steps > 2000000)
+          break;
+      }
+    for (const auto &c : integrator.counters())
+      if (c.first == "constraint events")
+        r.constraint_events = c.second;
+    r.final_1 =
+      system->body_motion(integrator.position(), integrator.velocity(), 0);
+    r.final_2 =
+      system->body_motion(integrator.position(), integrator.velocity(), 1);
+    std::cout << ContactParameters::mode_name(parameters.mode) << ", speed "
+              << speed << ": " << r.steps << " steps, " << r.constraint_events
+              << " constraint events, t = " << integrator.time()
+              << "; max relative errors: E_h " << r.energy_error << ", P "
+              << r.linear_error << ", L " << r.angular_error
+              << "; closest centres " << r.min_distance_of_centres << "; V1_x "
+              << r.final_1.velocity[0] << ", V2_x " << r.final_2.velocity[0]
+              << std::endl;
+    return r;
+  }
+} // namespace
+
+// Disabled: the certified search crawls in the penalty collision (see
+// doc/contact_system.md, "Open problem").
+TEST(ContactCollision, DISABLED_PenaltyConservesThroughCollision)
+{
+  ContactParameters p;
+  p.mode              = ContactParameters::Mode::penalty;
+  p.penalty_parameter = 1e-3;
+  const RunFigures r  = collide(p, 1., 10., 5., 1e-3, 0.6, false);
+  EXPECT_LT(r.energy_error, 1e-10);
+  EXPECT_LT(r.linear_error, 1e-10);
+  EXPECT_LT(r.angular_error, 1e-10);
+  // They touched (closer than 2 + gap) and ball 1 has been pushed.
+  EXPECT_LT(r.min_distance_of_centres, 2.);
+  EXPECT_LT(r.final_1.velocity[0], -0.1);
+}
+
+TEST(ContactCollision, ImpenetrabilityConservesAndNeverIntersects)
+{
+  ContactParameters p;
+  p.mode             = ContactParameters::Mode::impenetrability;
+  const RunFigures r = collide(p, 1., 10., 5., 1e-3, 2.0, true);
+  EXPECT_EQ(r.max_intersecting_pairs, 0u);
+  EXPECT_GT(r.constraint_events, 0u);
+  EXPECT_LT(r.energy_error, 1e-10);
+  EXPECT_LT(r.linear_error, 1e-10);
+  EXPECT_LT(r.angular_error, 1e-10);
+  EXPECT_LT(r.final_1.velocity[0], -0.1);
+}
+
+TEST(ContactCollision, NoTunnellingAtHighSpeed)
+{
+  ContactParameters p;
+  p.mode = ContactParameters::Mode::impenetrability;
+  // Relative speed 100 on a stiff material; without contact the balls would
+  // pass through each other by t = 0.041.
+  const RunFigures r = collide(p, 100., 1e5, 5e4, 1e-3, 0.03, true);
+  EXPECT_EQ(r.max_intersecting_pairs, 0u);
+  EXPECT_GT(r.constraint_events, 0u);
+  EXPECT_GT(r.min_distance_of_centres, 1.5);
+  EXPECT_LT(r.energy_error, 1e-10);
+  EXPECT_LT(r.linear_error, 1e-10);
+  EXPECT_LT(r.angular_error, 1e-10);
+}
