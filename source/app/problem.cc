@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/app/argon_cluster_problem.h>
+#include <estep/app/colliding_balls_problem.h>
 #include <estep/app/elastic_body_problem.h>
 #include <estep/app/problem.h>
 
@@ -15,12 +16,13 @@ namespace estep
     prm.declare_entry(
       "System",
       "argon cluster",
-      dealii::Patterns::Selection("argon cluster|elastic body"),
+      dealii::Patterns::Selection("argon cluster|elastic body|colliding balls"),
       "The mechanical system to integrate. Each system reads its own "
       "subsection of the same name.");
     prm.leave_subsection();
     ArgonClusterProblem::declare_parameters(prm);
     ElasticBodyProblem::declare_parameters(prm);
+    CollidingBallsProblem::declare_parameters(prm);
   }
 
 
@@ -35,6 +37,8 @@ namespace estep
       return ArgonClusterProblem::create(prm);
     if (system == "elastic body")
       return ElasticBodyProblem::create(prm);
+    if (system == "colliding balls")
+      return CollidingBallsProblem::create(prm);
     throw std::runtime_error("Problem/System: unknown system <" + system +
                              ">.");
   }

@@ -114,6 +114,12 @@ grep -q '"status": "unstable"' blowup/summary.json || fail "summary.json of a bl
 grep -q '"message": "The run became unstable' blowup/summary.json || fail "summary.json of a blow-up lacks the message"
 if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up holds non-finite values"; fi
 
+# The colliding balls through the application (explicit Newmark with penalty contact).
+expect 0 "completed at t = 0.01" -- "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_newmark.prm" \
+  -s "Output directory=balls" -s "Time integration/End time=0.01"
+grep -q '"cells per ball": 898' balls/summary.json || fail "the ball mesh is not the documented one"
+grep -q "V1_x" balls/history.csv || fail "history.csv of the balls lacks the body velocities"
+
 # No progress line when standard error is not a terminal; forced on, it appears.
 "$ESTEP" run.prm -s "Output directory=quiet" 2> quiet.err > /dev/null
 [[ ! -s quiet.err ]] || fail "something was written to a non-terminal standard error: $(cat quiet.err)"

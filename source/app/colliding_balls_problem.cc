@@ -1,0 +1,124 @@
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/app/colliding_balls_problem.h>
+#include <estep/fem/ball_mesh.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/materials/neo_hookean.h>
+#include <estep/systems/contact_parameters.h>
+#include <estep/systems/contact_system.h>
+
+#include <stdexcept>
+
+namespace estep
+{
+  namespace CollidingBallsProblem
+  {
+    void
+    declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Double;
+      const double max = Double::max_double_value;
+      prm.enter_subsection("Colliding balls");
+      {
+        prm.declare_entry("Radius",
+                          "1",
+                          Double(0., max),
+                          "Radius of both balls.");
+        prm.declare_entry(
+          "Mesh size",
+          "0.3",
+          Double(0., max),
+          "Target edge length of the ball meshes (0.3 with radius 1: 898 "
+          "tetrahedra and 258 vertices per ball; the seed used 864 and "
+          "250).");
+        prm.declare_entry(
+          "Gap",
+          "0.5",
+          Double(0., max),
+          "Distance between the two surfaces along the x axis at t = 0.");
+        prm.declare_entry("Speed",
+                          "5",
+                          Double(0., max),
+                          "Speed of ball 2 towards ball 1 (along -x).");
+        prm.declare_entry(
+          "Spin",
+          "2.5",
+          Double(-max, max),
+          "Angular velocity of ball 2 about the y axis, perpendicular to "
+          "the line of centres.");
+        prm.declare_entry("Lambda",
+                          "1.154e8",
+                          Double(0., max),
+                          "Lame constant lambda0.");
+        prm.declare_entry("Mu",
+                          "7.96e7",
+                          Double(0., max),
+                          "Shear modulus mu0 (positive).");
+        prm.declare_entry("Density",
+                          "7800",
+                          Double(0., max),
+                          "Mass density (positive).");
+      }
+      prm.leave_subsection();
+      ContactParameters::declare_parameters(prm);
+    }
+
+
+
+    Problem
+    create(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Colliding balls");
+      const double R       = prm.get_double("Radius");
+      const double size    = prm.get_double("Mesh size");
+      const double gap     = prm.get_double("Gap");
+      const double speed   = prm.get_double("Speed");
+      const double spin    = prm.get_double("Spin");
+      const double lambda  = prm.get_double("Lambda");
+      const double mu      = prm.get_double("Mu");
+      const double density = prm.get_double("Density");
+      prm.leave_subsection();
+      if (!(R > 0.) || !(size > 0.) || !(mu > 0.) || !(density > 0.))
+        throw std::runtime_error(
+          "Colliding balls: the radius, mesh size, Mu and Density must be positive.");
+      ContactParameters contact;
+      contact.parse_parameters(prm);
+
+      const auto material = std::make_shared<NeoHookean>(lambda, mu);
+      const std::array<double, 3> centre_1 = {{0., 0., 0.}},
+                                  centre_2 = {{2. * R + gap, 0., 0.}};
+      std::vector<std::shared_ptr<const ElasticBody>> bodies;
+      std::vector<Vector>                             q, v;
+      for (const auto &[centre, velocity, omega] :
+           {std::tuple{centre_1,
+                       std::array<double, 3>{{0., 0., 0.}},
+                       std::array<double, 3>{{0., 0., 0.}}},
+            std::tuple{centre_2,
+                       std::array<double, 3>{{-speed, 0., 0.}},
+                       std::array<double, 3>{{0., spin, 0.}}}})
+        {
+          dealii::Triangulation<3> tria;
+          make_ball_mesh(tria, size, R, centre);
+          auto body =
+            std::make_shared<ElasticBody>(tria, material, density, "ball");
+          q.push_back(body->reference_configuration());
+          v.push_back(body->rigid_velocity(q.back(), velocity, omega, centre));
+          bodies.push_back(body);
+        }
+
+      Problem problem;
+      problem.description.add("balls", 2u)
+        .add("cells per ball", bodies[0]->n_cells())
+        .add("vertices per ball", bodies[0]->n_vertices())
+        .add("mass per ball", bodies[0]->mass())
+        .add("contact", ContactParameters::mode_name(contact.mode));
+      auto system =
+        std::make_unique<ContactSystem>(bodies, contact, "colliding balls");
+      problem.q0     = system->concatenate(q);
+      problem.v0     = system->concatenate(v);
+      problem.system = std::move(system);
+      return problem;
+    }
+  } // namespace CollidingBallsProblem
+} // namespace estep
