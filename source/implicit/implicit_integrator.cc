@@ -46,36 +46,6 @@ namespace estep
   Snapshot
   ImplicitIntegrator::dense_output(const double time) const
   {
-    Snapshot     snapshot;
-    const double tau = t - t_previous;
-    snapshot.t       = time;
-    if (tau <= 0. || q_old.size() != q.size())
-      {
-        snapshot.q = q;
-        snapshot.v = v;
-      }
-    else
-      {
-        // Cubic Hermite interpolation on [t_previous, t] in x in [0, 1].
-        const double x   = (time - t_previous) / tau;
-        const double h00 = (1 + 2 * x) * (1 - x) * (1 - x),
-                     h10 = x * (1 - x) * (1 - x), h01 = x * x * (3 - 2 * x),
-                     h11 = x * x * (x - 1);
-        const double d00 = 6 * x * (x - 1), d10 = (1 - x) * (1 - 3 * x),
-                     d01 = -6 * x * (x - 1), d11 = x * (3 * x - 2);
-        snapshot.q.reinit(q.size());
-        snapshot.v.reinit(q.size());
-        for (unsigned int i = 0; i < q.size(); ++i)
-          {
-            snapshot.q[i] = h00 * q_old[i] + h10 * tau * v_old[i] + h01 * q[i] +
-                            h11 * tau * v[i];
-            snapshot.v[i] =
-              (d00 * q_old[i] + d01 * q[i]) / tau + d10 * v_old[i] + d11 * v[i];
-          }
-      }
-    snapshot.kinetic_energy            = kinetic_energy(system, snapshot.v);
-    snapshot.potential_energy          = system.energy(snapshot.q);
-    snapshot.terraced_potential_energy = snapshot.potential_energy;
-    return snapshot;
+    return hermite_dense_output(time, q_old, v_old);
   }
 } // namespace estep

@@ -122,6 +122,16 @@ namespace estep
     void
     count_step();
 
+    /**
+     * Dense output of a step-based scheme: the cubic Hermite interpolant of
+     * (q_old, v_old) at t_previous and (q, v) at t (third order), with the
+     * energies at time @p time.
+     */
+    Snapshot
+    hermite_dense_output(const double  time,
+                         const Vector &q_old,
+                         const Vector &v_old) const;
+
     const MechanicalSystem &system;
     double                  t          = 0.;
     double                  t_previous = 0.;
