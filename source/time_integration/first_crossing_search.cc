@@ -101,14 +101,14 @@ namespace estep
       query.departure == Departure::from_lower_level ? +1 :
          query.departure == Departure::from_upper_level ? -1 :
                                                           0;
-    // The level the flight sits on at s = 0, if any: the departure level, or
-    // a level that f(0) lies within the flight's value tolerance of.
-    // The band around the sitting level that counts as still sitting on it: a
-    // few times the flight's round-off, so that enclosures (widened by that
-    // round-off themselves) can fit inside.
+    // The band around a level that counts as sitting on it: a few times the
+    // flight's round-off, so that enclosures (widened by that round-off
+    // themselves) can fit inside.
     const double tolerance = 4. * flight.value_tolerance();
     const double f_zero    = flight.value(0.);
     ++statistics.n_value_evaluations;
+    // The level the flight sits on at s = 0, if any: the departure level, or
+    // a level that f(0) lies within the band of.
     const double sitting_level =
       departure_sign > 0 ? c0 :
       departure_sign < 0 ? c1 :
