@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace estep
 {
@@ -20,6 +21,11 @@ namespace estep
     /** Relative rounding bound of a cubic evaluated by Horner's rule (with a
      * safety factor). */
     constexpr double cubic_rounding = 16. * unit;
+
+    /** Relative rounding bound of the centred (Taylor) form of a cubic and
+     * its derivatives about a point, together with the Horner evaluation of
+     * the cubic (with a safety factor). */
+    constexpr double jacobian_rounding = 64. * unit;
 
     inline double
     cubic(const double c0,
@@ -175,12 +181,13 @@ namespace estep
     AssertDimension(q.size(), body.n_dofs());
     AssertDimension(v.size(), body.n_dofs());
     const P1CellData &d = body.cell_data();
-    c0.resize(n_cells);
-    c1.resize(n_cells);
-    c2.resize(n_cells);
-    c3.resize(n_cells);
-    scratch_1.resize(n_cells);
-    scratch_2.resize(n_cells);
+    // Not value-initialised: every entry is written before it is read.
+    storage.reset(new double[10 * std::size_t(n_cells)]);
+    c0        = storage.get();
+    c1        = c0 + n_cells;
+    c2        = c1 + n_cells;
+    c3        = c2 + n_cells;
+    scratch   = c3 + n_cells;
     double FF = 0., FG = 0., GG = 0.;
     for (unsigned int e = 0; e < n_cells; ++e)
       {
@@ -221,7 +228,7 @@ namespace estep
   double
   ElasticFreeFlight::value(const double s) const
   {
-    double *J = scratch_1.data();
+    double *J = scratch;
     for (unsigned int e = 0; e < n_cells; ++e)
       J[e] = cubic(c0[e], c1[e], c2[e], c3[e], s);
     const double volumetric =
@@ -236,7 +243,7 @@ namespace estep
   LineValue
   ElasticFreeFlight::value_and_derivative(const double s) const
   {
-    double *J = scratch_1.data(), *dJ = scratch_2.data();
+    double *J = scratch, *dJ = scratch + n_cells;
     for (unsigned int e = 0; e < n_cells; ++e)
       {
         J[e]  = cubic(c0[e], c1[e], c2[e], c3[e], s);
@@ -251,76 +258,122 @@ namespace estep
     return r;
   }
 
-  void
-  ElasticFreeFlight::compute_critical_points() const
-  {
-    critical_1.resize(n_cells);
-    critical_2.resize(n_cells);
-    slope_vertex.resize(n_cells);
-    scratch_3.resize(n_cells);
-    scratch_4.resize(n_cells);
-    scratch_5.resize(n_cells);
-    scratch_6.resize(n_cells);
-    for (unsigned int e = 0; e < n_cells; ++e)
-      {
-        quadratic_roots(
-          3. * c3[e], 2. * c2[e], c1[e], critical_1[e], critical_2[e]);
-        slope_vertex[e] = c3[e] != 0. ? -c2[e] / (3. * c3[e]) : not_a_point;
-      }
-    critical_points_ready = true;
-  }
-
   LineEnclosure
   ElasticFreeFlight::enclose(const double a, const double b) const
   {
     Assert(a <= b, dealii::ExcMessage("enclose(a, b) needs a <= b."));
-    if (!critical_points_ready)
-      compute_critical_points();
-    // f and f' at the midpoint, for the second-order form below (computed
-    // first: value_and_derivative() uses the scratch arrays filled next).
-    const LineValue fm   = value_and_derivative(0.5 * (a + b));
-    double         *J_lo = scratch_1.data(), *J_hi = scratch_2.data();
-    double         *dJ_lo = scratch_3.data(), *dJ_hi = scratch_4.data();
-    const double    S = std::max(std::abs(a), std::abs(b));
+    // The centre m and a half-width r with [a, b] in [m - r, m + r] despite
+    // the rounding of m.
+    const double m = 0.5 * (a + b);
+    const double r = std::max(b - m, m - a) * (1. + 4. * unit);
+    // f and f' at the centre (value_and_derivative() uses the scratch arrays
+    // filled next).
+    const LineValue fm = value_and_derivative(m);
+    enclose_jacobians(m, r);
+    if (const auto taylor = taylor_form(m, r, fm))
+      return *taylor;
+    return natural_form(a, b);
+  }
+
+  void
+  ElasticFreeFlight::enclose_jacobians(const double m, const double r) const
+  {
+    // J(m + t) = Jm + D1 t + D2 t^2 + c3 t^3 exactly, |t| <= r, so
+    //   J   in Jm + D2 [0, r^2] + [-1, 1] (|D1| r + |c3| r^3),
+    //   J'  in D1 + 3 c3 [0, r^2] + [-1, 1] 2 |D2| r,
+    //   J'' in 2 D2 + [-1, 1] 6 |c3| r,
+    // widened by a bound on the rounding of these formulas and of the
+    // Horner evaluation of J in value() (both a few units of round-off of
+    // the magnitudes of the terms at S = |m| + r).
+    double      *J_lo = scratch, *J_hi = J_lo + n_cells;
+    double      *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
+    double      *d2J_lo = dJ_hi + n_cells, *d2J_hi = d2J_lo + n_cells;
+    const double S = std::abs(m) + r, r2 = r * r;
     for (unsigned int e = 0; e < n_cells; ++e)
       {
         const double k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
-        const double Ja = cubic(k0, k1, k2, k3, a),
-                     Jb = cubic(k0, k1, k2, k3, b);
-        double       lo = std::min(Ja, Jb), hi = std::max(Ja, Jb);
-        const double t1 = critical_1[e], t2 = critical_2[e];
-        if (t1 > a && t1 < b)
-          {
-            const double Jt = cubic(k0, k1, k2, k3, t1);
-            lo              = std::min(lo, Jt);
-            hi              = std::max(hi, Jt);
-          }
-        if (t2 > a && t2 < b)
-          {
-            const double Jt = cubic(k0, k1, k2, k3, t2);
-            lo              = std::min(lo, Jt);
-            hi              = std::max(hi, Jt);
-          }
-        const double margin = cubic_rounding * cubic_scale(k0, k1, k2, k3, S);
-        J_lo[e]             = lo - margin;
-        J_hi[e]             = hi + margin;
+        const double Jm = k0 + m * (k1 + m * (k2 + m * k3));
+        const double D1 = k1 + m * (2. * k2 + 3. * m * k3);
+        const double D2 = k2 + 3. * m * k3;
+        const double a1 = std::abs(k1), a2 = std::abs(k2), a3 = std::abs(k3);
+        const double scale0 = std::abs(k0) + S * (a1 + S * (a2 + S * a3));
+        const double scale1 = a1 + S * (2. * a2 + 3. * S * a3);
+        const double scale2 = 2. * a2 + 6. * S * a3;
 
-        const double da  = k1 + a * (2. * k2 + 3. * a * k3),
-                     db  = k1 + b * (2. * k2 + 3. * b * k3);
-        double       dlo = std::min(da, db), dhi = std::max(da, db);
-        const double tv = slope_vertex[e];
-        if (tv > a && tv < b)
-          {
-            const double dv = k1 + tv * (2. * k2 + 3. * tv * k3);
-            dlo             = std::min(dlo, dv);
-            dhi             = std::max(dhi, dv);
-          }
-        const double slope_margin =
-          cubic_rounding *
-          (std::abs(k1) + S * (2. * std::abs(k2) + 3. * S * std::abs(k3)));
-        dJ_lo[e] = dlo - slope_margin;
-        dJ_hi[e] = dhi + slope_margin;
+        const double curve = D2 * r2;
+        const double spread0 =
+          std::abs(D1) * r + a3 * r2 * r + jacobian_rounding * scale0;
+        J_lo[e] = Jm + std::min(curve, 0.) - spread0;
+        J_hi[e] = Jm + std::max(curve, 0.) + spread0;
+
+        const double bend = 3. * k3 * r2;
+        const double spread1 =
+          2. * std::abs(D2) * r + jacobian_rounding * scale1;
+        dJ_lo[e] = D1 + std::min(bend, 0.) - spread1;
+        dJ_hi[e] = D1 + std::max(bend, 0.) + spread1;
+
+        const double spread2 = 6. * a3 * r + jacobian_rounding * scale2;
+        d2J_lo[e]            = 2. * D2 - spread2;
+        d2J_hi[e]            = 2. * D2 + spread2;
       }
+  }
+
+  std::optional<LineEnclosure>
+  ElasticFreeFlight::taylor_form(const double     m,
+                                 const double     r,
+                                 const LineValue &fm) const
+  {
+    // f(m + t) = f(m) + f'(m) t + f''(xi) t^2 / 2 and
+    // f'(m + t) = f'(m) + f''(xi) t, |t| <= r, with f'' enclosed per cell from
+    // f_e'' = w (phi''(J) J'^2 + phi'(J) J''). Unlike a sum of per-cell
+    // ranges, this form keeps its relative accuracy when the terms of V
+    // cancel (a rigid rotation leaves V = O(s^4) from terms of size O(s^2)).
+    if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
+      return std::nullopt;
+    const double *J_lo = scratch, *J_hi = J_lo + n_cells;
+    const double *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
+    const double *d2J_lo = dJ_hi + n_cells, *d2J_hi = d2J_lo + n_cells;
+    double        slope_magnitude = 0.;
+    Interval      curvature = body.material().enclose_volumetric_curvature_sum(
+      J_lo,
+      J_hi,
+      dJ_lo,
+      dJ_hi,
+      d2J_lo,
+      d2J_hi,
+      body.cell_data().volume.data(),
+      n_cells,
+      slope_magnitude);
+    if (!std::isfinite(curvature.lower) || !std::isfinite(curvature.upper))
+      return std::nullopt;
+    curvature += Interval::point(2. * quadratic[2]);
+    slope_magnitude +=
+      std::abs(quadratic[1]) + 2. * std::abs(quadratic[2]) * (std::abs(m) + r);
+    const double value_margin =
+      64. * unit * (gross_magnitude + std::abs(fm.value));
+    const double  slope_margin = 64. * unit * slope_magnitude;
+    LineEnclosure enclosure;
+    // f lies between the quadratics with the extreme curvatures: their exact
+    // ranges over |t| <= r (the vertex of the lower one, near a minimum of f,
+    // is far tighter than the bound |f'(m)| r).
+    enclosure.value =
+      Interval{
+        quadratic_range(fm.value, fm.derivative, 0.5 * curvature.lower, -r, r)
+          .lower,
+        quadratic_range(fm.value, fm.derivative, 0.5 * curvature.upper, -r, r)
+          .upper}
+        .widened(0., value_margin);
+    enclosure.derivative =
+      (Interval::point(fm.derivative) + curvature * Interval{-r, r})
+        .widened(0., slope_margin);
+    return enclosure;
+  }
+
+  LineEnclosure
+  ElasticFreeFlight::natural_form(const double a, const double b) const
+  {
+    const double *J_lo = scratch, *J_hi = J_lo + n_cells;
+    const double *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
     LineEnclosure r = body.material().enclose_volumetric_sum(
       J_lo, J_hi, dJ_lo, dJ_hi, body.cell_data().volume.data(), n_cells);
     const Interval Q =
@@ -350,70 +403,7 @@ namespace estep
         r.derivative.lower -= slope_margin;
         r.derivative.upper += slope_margin;
       }
-    tighten_by_taylor_form(a, b, fm, r);
     return r;
-  }
-
-  void
-  ElasticFreeFlight::tighten_by_taylor_form(const double     a,
-                                            const double     b,
-                                            const LineValue &fm,
-                                            LineEnclosure   &enclosure) const
-  {
-    // f(x) = f(m) + f'(m) (x - m) + f''(xi) (x - m)^2 / 2 and
-    // f'(x) = f'(m) + f''(xi) (x - m), with f'' enclosed per cell from
-    // f_e'' = w (phi''(J) J'^2 + phi'(J) J''). The first-order enclosures
-    // lose all relative accuracy when terms of V cancel (a rigid rotation
-    // leaves V = O(s^4) from terms of size O(s^2)); this form does not.
-    if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
-      return;
-    const double *J_lo = scratch_1.data(), *J_hi = scratch_2.data();
-    const double *dJ_lo = scratch_3.data(), *dJ_hi = scratch_4.data();
-    double       *d2J_lo = scratch_5.data(), *d2J_hi = scratch_6.data();
-    for (unsigned int e = 0; e < n_cells; ++e)
-      {
-        const double u      = 2. * c2[e] + 6. * c3[e] * a,
-                     v      = 2. * c2[e] + 6. * c3[e] * b;
-        const double margin = 4. * unit * (std::abs(u) + std::abs(v));
-        d2J_lo[e]           = std::min(u, v) - margin;
-        d2J_hi[e]           = std::max(u, v) + margin;
-      }
-    double   slope_magnitude = 0.;
-    Interval curvature       = body.material().enclose_volumetric_curvature_sum(
-      J_lo,
-      J_hi,
-      dJ_lo,
-      dJ_hi,
-      d2J_lo,
-      d2J_hi,
-      body.cell_data().volume.data(),
-      n_cells,
-      slope_magnitude);
-    if (!std::isfinite(curvature.lower) || !std::isfinite(curvature.upper))
-      return;
-    curvature += Interval::point(2. * quadratic[2]);
-    slope_magnitude +=
-      std::abs(quadratic[1]) +
-      2. * std::abs(quadratic[2]) * std::max(std::abs(a), std::abs(b));
-    const double r = 0.5 * (b - a);
-    const double value_margin =
-      64. * unit * (gross_magnitude + std::abs(fm.value));
-    const double   slope_margin = 64. * unit * slope_magnitude;
-    const Interval value =
-      (Interval::point(fm.value) +
-       Interval{-std::abs(fm.derivative) * r, std::abs(fm.derivative) * r} +
-       0.5 * curvature * Interval{0., r * r})
-        .widened(0., value_margin);
-    const Interval slope =
-      (Interval::point(fm.derivative) + curvature * Interval{-r, r})
-        .widened(0., slope_margin);
-    const auto intersect = [](Interval &x, const Interval &y) {
-      const Interval z{std::max(x.lower, y.lower), std::min(x.upper, y.upper)};
-      if (z.lower <= z.upper)
-        x = z;
-    };
-    intersect(enclosure.value, value);
-    intersect(enclosure.derivative, slope);
   }
 
   double

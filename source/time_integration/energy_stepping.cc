@@ -207,6 +207,7 @@ namespace estep
             {"constraint events", n_constraint_events},
             {"energy evaluations", search_statistics.n_value_evaluations},
             {"enclosures", search_statistics.n_enclosures},
+            {"locating evaluations", search_statistics.n_locate_evaluations},
             {"gradient evaluations", n_gradients}};
   }
 } // namespace estep

@@ -22,9 +22,11 @@ namespace estep
      * The crossing of @p level on [a, b], where f is proven monotone, f(a) has
      * not reached the level and f(b) has. Safeguarded Newton iteration inside a
      * shrinking bracket [lo, hi] (lo on the near side, hi beyond), bisection
-     * when Newton leaves the bracket or is slow. The point returned is on the
-     * near side, or exactly on the level, and within a few units of round-off
-     * of the crossing.
+     * when Newton leaves the bracket or is slow. It stops when f is within the
+     * flight's value tolerance of the level or the Newton step is a few units
+     * of round-off of s; the point returned is then on the near side (or
+     * exactly on the level): a point found beyond is stepped back by twice its
+     * Newton correction, doubled until f is on the near side.
      */
     double
     locate_crossing(const FreeFlight &flight,
@@ -37,6 +39,13 @@ namespace estep
     {
       const double sign =
         (fb >= fa) ? 1. : -1.; // g = sign (f - level) increases
+      const auto g_at = [&](const double s) {
+        ++statistics.n_value_evaluations;
+        ++statistics.n_locate_evaluations;
+        const LineValue f = flight.value_and_derivative(s);
+        return LineValue{sign * (f.value - level), sign * f.derivative};
+      };
+      const double noise = flight.value_tolerance();
       double       lo = a, hi = b;
       const double g_lo = sign * (fa - level), g_hi = sign * (fb - level);
       double       x             = (std::isfinite(g_hi) && g_hi > g_lo) ?
@@ -45,42 +54,41 @@ namespace estep
       double       previous_step = hi - lo;
       for (unsigned int iteration = 0; iteration < 200; ++iteration)
         {
-          const double tolerance =
+          const double resolution =
             4. * epsilon * std::max(std::abs(lo), std::abs(hi));
-          if (hi - lo <= tolerance)
+          if (hi - lo <= resolution)
             break;
           if (!(x > lo && x < hi))
             x = 0.5 * (lo + hi);
-          const LineValue fx = flight.value_and_derivative(x);
-          ++statistics.n_value_evaluations;
-          const double g = sign * (fx.value - level);
-          if (g == 0.)
+          const LineValue gx = g_at(x);
+          if (gx.value == 0.)
             return x;
-          (g < 0. ? lo : hi) = x;
+          (gx.value < 0. ? lo : hi) = x;
 
-          const double slope = sign * fx.derivative;
-          double       step  = (slope > 0.) ? -g / slope : hi - lo;
+          const double newton =
+            (gx.derivative > 0.) ? -gx.value / gx.derivative : hi - lo;
+          if (std::abs(gx.value) <= noise || std::abs(newton) <= resolution)
+            {
+              // Converged: x is within round-off of the crossing. Return a
+              // point on the near side.
+              if (gx.value < 0.)
+                return x;
+              double back = std::max(2. * std::abs(newton), 2. * resolution);
+              while (x - back > lo)
+                {
+                  const double before = x - back;
+                  if (g_at(before).value <= 0.)
+                    return before;
+                  hi = before;
+                  back *= 2.;
+                }
+              return lo;
+            }
+          double step = newton;
           if (!(x + step > lo && x + step < hi) ||
               std::abs(step) > 0.5 * previous_step)
             step = 0.5 * (lo + hi) - x; // bisect
           previous_step = std::abs(step);
-
-          if (std::abs(step) <= tolerance)
-            {
-              // Converged. Stay on the near side: x itself, or a point just
-              // before it.
-              if (g < 0.)
-                return x;
-              const double before = std::max(x - 2. * tolerance, lo);
-              if (before == lo)
-                break;
-              ++statistics.n_value_evaluations;
-              if (sign * (flight.value(before) - level) <= 0.)
-                return before;
-              hi = before;
-              x  = 0.5 * (lo + hi);
-              continue;
-            }
           x += step;
         }
       return lo;
@@ -149,7 +157,10 @@ namespace estep
           {
             const PendingInterval I = pending.back();
             pending.pop_back();
-            const bool in_prefix   = sitting && I.a == prefix_end;
+            // The rules for the sitting level apply while f(a) is still
+            // within its band; beyond, f(a) is strictly inside the terrace.
+            const bool in_prefix = sitting && I.a == prefix_end &&
+                                   std::abs(I.fa - sitting_level) <= tolerance;
             const bool at_limit    = !std::isfinite(I.fb);
             bool       up_possible = true, down_possible = true;
 

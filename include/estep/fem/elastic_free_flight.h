@@ -5,6 +5,8 @@
 #include <estep/systems/mechanical_system.h>
 
 #include <array>
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace estep
@@ -23,11 +25,13 @@ namespace estep
    * f_vol(J_e(s)) costs one cubic per cell plus the material's batch kernel (a
    * vectorised log for neo-Hookean).
    *
-   * enclose(a, b): per cell the exact range of the cubic J_e over [a, b] (ends
-   * and the critical points inside, precomputed on first use) and of its
-   * derivative, widened by the rounding bound 16 u (|c0| + |c1| S + |c2| S^2 +
-   * |c3| S^3), S = max(|a|, |b|); then the material's rigorous enclosure of the
-   * volumetric sum and the exact range of Q.
+   * enclose(a, b): per cell, enclosures of J_e, J_e' and J_e'' over [a, b]
+   * from the exact expansion of the cubic about the centre m (widened by a
+   * rounding bound); then the second-order form f(m) + f'(m) t + f''([a, b])
+   * t^2 / 2 with the material's rigorous enclosure of the volumetric part of
+   * f''. Where that is unbounded (an element may invert in [a, b]), the sum of
+   * the per-cell ranges of the material's volumetric term and the exact range
+   * of Q instead.
    *
    * admissible_limit(): the smallest positive root over cells of J_e(s),
    * computed from below (see the implementation: monotone pieces between
@@ -72,31 +76,35 @@ namespace estep
     quadratic_part() const;
 
   private:
+    /** Enclosures of J_e, J_e' and J_e'' over [m - r, m + r] per cell, into
+     * the six scratch arrays (lower and upper bounds). */
     void
-    compute_critical_points() const;
+    enclose_jacobians(const double m, const double r) const;
 
-    /** Intersect @p enclosure of [a, b] with the second-order Taylor form
-     * about the midpoint, where @p fm holds f and f' (needs the per-cell J
-     * and J' ranges of [a, b] in the scratch arrays). */
-    void
-    tighten_by_taylor_form(const double     a,
-                           const double     b,
-                           const LineValue &fm,
-                           LineEnclosure   &enclosure) const;
+    /** The second-order (Taylor) form about the centre @p m, from f and f'
+     * there and the enclosure of f'' (needs enclose_jacobians()); empty if
+     * f'' is unbounded there. */
+    std::optional<LineEnclosure>
+    taylor_form(const double m, const double r, const LineValue &fm) const;
 
-    const ElasticBody  &body;
-    unsigned int        n_cells;
-    std::vector<double> c0, c1, c2, c3;
-    double              quadratic[3];
+    /** The sum of the per-cell ranges of f and f' over [a, b] (needs
+     * enclose_jacobians() of an interval holding [a, b]). */
+    LineEnclosure
+    natural_form(const double a, const double b) const;
+
+    const ElasticBody &body;
+    unsigned int       n_cells;
+    /** The four arrays of cubic coefficients and six cell-length scratch
+     * arrays, in one allocation. */
+    std::unique_ptr<double[]> storage;
+    double                   *c0, *c1, *c2, *c3;
+    double                   *scratch;
+    double                    quadratic[3];
     /** Sum of the magnitudes of the terms of V at s = 0. */
     double gross_magnitude = 0.;
 
-    mutable bool                critical_points_ready = false;
-    mutable std::vector<double> critical_1, critical_2, slope_vertex;
-    mutable bool                limit_ready = false;
-    mutable double              limit       = 0.;
-    mutable std::vector<double> scratch_1, scratch_2, scratch_3, scratch_4,
-      scratch_5, scratch_6;
+    mutable bool   limit_ready = false;
+    mutable double limit       = 0.;
   };
 } // namespace estep
 

@@ -54,6 +54,8 @@ namespace estep
   {
     std::uint64_t n_value_evaluations = 0;
     std::uint64_t n_enclosures        = 0;
+    /** The part of n_value_evaluations spent locating crossings. */
+    std::uint64_t n_locate_evaluations = 0;
   };
 
   /**
