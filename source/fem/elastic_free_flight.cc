@@ -182,7 +182,7 @@ namespace estep
     AssertDimension(v.size(), body.n_dofs());
     const P1CellData &d = body.cell_data();
     // Not value-initialised: every entry is written before it is read.
-    storage.reset(new double[10 * std::size_t(n_cells)]);
+    storage.reset(new double[6 * std::size_t(n_cells)]);
     c0        = storage.get();
     c1        = c0 + n_cells;
     c2        = c1 + n_cells;
@@ -266,17 +266,29 @@ namespace estep
     // the rounding of m.
     const double m = 0.5 * (a + b);
     const double r = std::max(b - m, m - a) * (1. + 4. * unit);
-    // f and f' at the centre (value_and_derivative() uses the scratch arrays
-    // filled next).
+    // f and f' at the centre.
     const LineValue fm = value_and_derivative(m);
-    enclose_jacobians(m, r);
     if (const auto taylor = taylor_form(m, r, fm))
       return *taylor;
-    return natural_form(a, b);
+    return natural_form(a, b, m, r);
   }
 
+  /** Enclosures of J_e, J_e' and J_e'' over a parameter interval for a chunk
+   * of cells (lower and upper bounds; small enough to stay in the L1 cache).
+   */
+  struct ElasticFreeFlight::JacobianRanges
+  {
+    static constexpr unsigned int size = 256;
+    double J_lo[size], J_hi[size], dJ_lo[size], dJ_hi[size], d2J_lo[size],
+      d2J_hi[size];
+  };
+
   void
-  ElasticFreeFlight::enclose_jacobians(const double m, const double r) const
+  ElasticFreeFlight::enclose_jacobians(const double       m,
+                                       const double       r,
+                                       const unsigned int begin,
+                                       const unsigned int count,
+                                       JacobianRanges    &ranges) const
   {
     // J(m + t) = Jm + D1 t + D2 t^2 + c3 t^3 exactly, |t| <= r, so
     //   J   in Jm + D2 [0, r^2] + [-1, 1] (|D1| r + |c3| r^3),
@@ -285,16 +297,14 @@ namespace estep
     // widened by a bound on the rounding of these formulas and of the
     // Horner evaluation of J in value() (both a few units of round-off of
     // the magnitudes of the terms at S = |m| + r).
-    double      *J_lo = scratch, *J_hi = J_lo + n_cells;
-    double      *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
-    double      *d2J_lo = dJ_hi + n_cells, *d2J_hi = d2J_lo + n_cells;
     const double S = std::abs(m) + r, r2 = r * r;
-    for (unsigned int e = 0; e < n_cells; ++e)
+    for (unsigned int i = 0; i < count; ++i)
       {
-        const double k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
-        const double Jm = k0 + m * (k1 + m * (k2 + m * k3));
-        const double D1 = k1 + m * (2. * k2 + 3. * m * k3);
-        const double D2 = k2 + 3. * m * k3;
+        const unsigned int e  = begin + i;
+        const double       k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
+        const double       Jm = k0 + m * (k1 + m * (k2 + m * k3));
+        const double       D1 = k1 + m * (2. * k2 + 3. * m * k3);
+        const double       D2 = k2 + 3. * m * k3;
         const double a1 = std::abs(k1), a2 = std::abs(k2), a3 = std::abs(k3);
         const double scale0 = std::abs(k0) + S * (a1 + S * (a2 + S * a3));
         const double scale1 = a1 + S * (2. * a2 + 3. * S * a3);
@@ -303,18 +313,18 @@ namespace estep
         const double curve = D2 * r2;
         const double spread0 =
           std::abs(D1) * r + a3 * r2 * r + jacobian_rounding * scale0;
-        J_lo[e] = Jm + std::min(curve, 0.) - spread0;
-        J_hi[e] = Jm + std::max(curve, 0.) + spread0;
+        ranges.J_lo[i] = Jm + std::min(curve, 0.) - spread0;
+        ranges.J_hi[i] = Jm + std::max(curve, 0.) + spread0;
 
         const double bend = 3. * k3 * r2;
         const double spread1 =
           2. * std::abs(D2) * r + jacobian_rounding * scale1;
-        dJ_lo[e] = D1 + std::min(bend, 0.) - spread1;
-        dJ_hi[e] = D1 + std::max(bend, 0.) + spread1;
+        ranges.dJ_lo[i] = D1 + std::min(bend, 0.) - spread1;
+        ranges.dJ_hi[i] = D1 + std::max(bend, 0.) + spread1;
 
         const double spread2 = 6. * a3 * r + jacobian_rounding * scale2;
-        d2J_lo[e]            = 2. * D2 - spread2;
-        d2J_hi[e]            = 2. * D2 + spread2;
+        ranges.d2J_lo[i]     = 2. * D2 - spread2;
+        ranges.d2J_hi[i]     = 2. * D2 + spread2;
       }
   }
 
@@ -330,22 +340,32 @@ namespace estep
     // cancel (a rigid rotation leaves V = O(s^4) from terms of size O(s^2)).
     if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
       return std::nullopt;
-    const double *J_lo = scratch, *J_hi = J_lo + n_cells;
-    const double *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
-    const double *d2J_lo = dJ_hi + n_cells, *d2J_hi = d2J_lo + n_cells;
-    double        slope_magnitude = 0.;
-    Interval      curvature = body.material().enclose_volumetric_curvature_sum(
-      J_lo,
-      J_hi,
-      dJ_lo,
-      dJ_hi,
-      d2J_lo,
-      d2J_hi,
-      body.cell_data().volume.data(),
-      n_cells,
-      slope_magnitude);
-    if (!std::isfinite(curvature.lower) || !std::isfinite(curvature.upper))
-      return std::nullopt;
+    // The curvature of the volumetric part, chunk by chunk (the interval sum
+    // rounds outward).
+    JacobianRanges ranges;
+    Interval       curvature{0., 0.};
+    double         slope_magnitude = 0.;
+    for (unsigned int begin = 0; begin < n_cells; begin += JacobianRanges::size)
+      {
+        const unsigned int count =
+          std::min(JacobianRanges::size, n_cells - begin);
+        enclose_jacobians(m, r, begin, count, ranges);
+        double         chunk_slope = 0.;
+        const Interval chunk = body.material().enclose_volumetric_curvature_sum(
+          ranges.J_lo,
+          ranges.J_hi,
+          ranges.dJ_lo,
+          ranges.dJ_hi,
+          ranges.d2J_lo,
+          ranges.d2J_hi,
+          body.cell_data().volume.data() + begin,
+          count,
+          chunk_slope);
+        if (!std::isfinite(chunk.lower) || !std::isfinite(chunk.upper))
+          return std::nullopt;
+        curvature += chunk;
+        slope_magnitude += chunk_slope;
+      }
     curvature += Interval::point(2. * quadratic[2]);
     slope_magnitude +=
       std::abs(quadratic[1]) + 2. * std::abs(quadratic[2]) * (std::abs(m) + r);
@@ -370,12 +390,30 @@ namespace estep
   }
 
   LineEnclosure
-  ElasticFreeFlight::natural_form(const double a, const double b) const
+  ElasticFreeFlight::natural_form(const double a,
+                                  const double b,
+                                  const double m,
+                                  const double half_width) const
   {
-    const double *J_lo = scratch, *J_hi = J_lo + n_cells;
-    const double *dJ_lo = J_hi + n_cells, *dJ_hi = dJ_lo + n_cells;
-    LineEnclosure r = body.material().enclose_volumetric_sum(
-      J_lo, J_hi, dJ_lo, dJ_hi, body.cell_data().volume.data(), n_cells);
+    // The per-cell ranges of the volumetric part, chunk by chunk (the
+    // interval sum rounds outward).
+    JacobianRanges ranges;
+    LineEnclosure  r{{0., 0.}, {0., 0.}};
+    for (unsigned int begin = 0; begin < n_cells; begin += JacobianRanges::size)
+      {
+        const unsigned int count =
+          std::min(JacobianRanges::size, n_cells - begin);
+        enclose_jacobians(m, half_width, begin, count, ranges);
+        const LineEnclosure chunk = body.material().enclose_volumetric_sum(
+          ranges.J_lo,
+          ranges.J_hi,
+          ranges.dJ_lo,
+          ranges.dJ_hi,
+          body.cell_data().volume.data() + begin,
+          count);
+        r.value += chunk.value;
+        r.derivative += chunk.derivative;
+      }
     const Interval Q =
       quadratic_range(quadratic[0], quadratic[1], quadratic[2], a, b);
     const Interval dQ =

@@ -76,26 +76,36 @@ namespace estep
     quadratic_part() const;
 
   private:
-    /** Enclosures of J_e, J_e' and J_e'' over [m - r, m + r] per cell, into
-     * the six scratch arrays (lower and upper bounds). */
-    void
-    enclose_jacobians(const double m, const double r) const;
+    struct JacobianRanges;
 
-    /** The second-order (Taylor) form about the centre @p m, from f and f'
-     * there and the enclosure of f'' (needs enclose_jacobians()); empty if
-     * f'' is unbounded there. */
+    /** Enclosures of J_e, J_e' and J_e'' over [m - r, m + r] for the cells
+     * begin, ..., begin + count - 1. */
+    void
+    enclose_jacobians(const double       m,
+                      const double       r,
+                      const unsigned int begin,
+                      const unsigned int count,
+                      JacobianRanges    &ranges) const;
+
+    /** The second-order (Taylor) form about the centre @p m of [m - r, m +
+     * r], from f and f' there and the enclosure of f''; empty if f'' is
+     * unbounded there. */
     std::optional<LineEnclosure>
     taylor_form(const double m, const double r, const LineValue &fm) const;
 
-    /** The sum of the per-cell ranges of f and f' over [a, b] (needs
-     * enclose_jacobians() of an interval holding [a, b]). */
+    /** The sum of the per-cell ranges of f and f' over [a, b], which lies in
+     * [m - half_width, m + half_width]. */
     LineEnclosure
-    natural_form(const double a, const double b) const;
+    natural_form(const double a,
+                 const double b,
+                 const double m,
+                 const double half_width) const;
 
     const ElasticBody &body;
     unsigned int       n_cells;
-    /** The four arrays of cubic coefficients and six cell-length scratch
-     * arrays, in one allocation. */
+    /** The four arrays of cubic coefficients and two cell-length scratch
+     * arrays (J and J' of value() and value_and_derivative()), in one
+     * allocation. */
     std::unique_ptr<double[]> storage;
     double                   *c0, *c1, *c2, *c3;
     double                   *scratch;
