@@ -73,8 +73,9 @@ namespace estep
    * first, so the first crossing found is the first one;
    * - where f' has one sign the crossing is unique and is located by
    * safeguarded Newton iteration inside a shrinking bracket; the point returned
-   * lies on the near side of the bracket (never after the crossing, at most a
-   * few units of round-off before it);
+   * lies on the near side of the bracket (never after the crossing, before it
+   * by at most a few units of round-off of s or the flight's value tolerance
+   * of f);
    * - the departure level, on which the flight starts, is excluded near s = 0
    * only by a proven sign of f' over [0, b] (f moves into the terrace), never
    * by comparing f(s) with the level, so the departure root at s = 0 is never
