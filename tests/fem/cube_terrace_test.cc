@@ -29,8 +29,10 @@ namespace
             const double t1 = stepping.time();
             for (unsigned int k = 1; k < samples; ++k)
               {
-                const auto   x = stepping.dense_output(t0 + k * (t1 - t0) / samples);
-                const double below = x.terraced_potential_energy - x.potential_energy;
+                const auto x =
+                  stepping.dense_output(t0 + k * (t1 - t0) / samples);
+                const double below =
+                  x.terraced_potential_energy - x.potential_energy;
                 const double above =
                   x.potential_energy - (x.terraced_potential_energy + h);
                 worst = std::max({worst, below / h, above / h});
