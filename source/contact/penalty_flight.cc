@@ -8,25 +8,314 @@
 
 namespace estep
 {
+  namespace
+  {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    constexpr double unit     = std::numeric_limits<double>::epsilon() / 2.;
+
+    const Interval entire = {-infinity, infinity};
+
+    inline bool
+    bounded(const Interval &a)
+    {
+      return std::isfinite(a.lower) && std::isfinite(a.upper);
+    }
+
+    inline double
+    magnitude(const Interval &a)
+    {
+      return std::max(std::abs(a.lower), std::abs(a.upper));
+    }
+
+    inline Interval
+    hull(const Interval &a, const Interval &b)
+    {
+      return {std::min(a.lower, b.lower), std::max(a.upper, b.upper)};
+    }
+  } // namespace
+
+
+
+  LineTaylorForm
+  LineTaylorForm::about_centre_of(const double a, const double b)
+  {
+    LineTaylorForm form;
+    form.centre = a + 0.5 * (b - a);
+    // [a, b] lies in [m - r, m + r] despite the rounding of m.
+    form.radius = std::max(b - form.centre, form.centre - a) * (1. + 4. * unit);
+    return form;
+  }
+
+
+
+  LineTaylorForm &
+  LineTaylorForm::operator+=(const LineTaylorForm &other)
+  {
+    if (other.centre != centre || other.radius != radius)
+      throw std::logic_error("LineTaylorForm: adding forms about different "
+                             "intervals");
+    // The sums at the centre are rounded (once here, once in the point
+    // evaluation of the sum).
+    value_error +=
+      other.value_error + 2. * unit * (std::abs(value) + std::abs(other.value));
+    slope_error +=
+      other.slope_error + 2. * unit * (std::abs(slope) + std::abs(other.slope));
+    value += other.value;
+    slope += other.slope;
+    curvature    = curvature + other.curvature;
+    slope_offset = slope_offset + other.slope_offset;
+    return *this;
+  }
+
+
+
+  LineTaylorForm
+  LineTaylorForm::scaled(const double c) const
+  {
+    LineTaylorForm form = *this;
+    form.value          = c * value;
+    form.slope          = c * slope;
+    form.curvature      = c * curvature;
+    form.slope_offset   = c * slope_offset;
+    form.value_error =
+      std::abs(c) * value_error + 2. * unit * std::abs(form.value);
+    form.slope_error =
+      std::abs(c) * slope_error + 2. * unit * std::abs(form.slope);
+    return form;
+  }
+
+
+
+  LineEnclosure
+  LineTaylorForm::enclosure() const
+  {
+    if (!bounded(curvature) || !bounded(slope_offset) ||
+        !std::isfinite(value) || !std::isfinite(slope) ||
+        !std::isfinite(value_error) || !std::isfinite(slope_error))
+      return {entire, entire};
+    const double r = radius;
+    // The slopes of the two quadratics on either side of the centre, and the
+    // rounding of these sums over the half-width.
+    const double slope_low  = slope + slope_offset.lower;
+    const double slope_high = slope + slope_offset.upper;
+    const double rounding =
+      unit * (std::abs(slope_low) + std::abs(slope_high)) * r;
+    const double value_margin = 2. * value_error + slope_error * r + rounding;
+    // f(m + t) - f(m) - f'(m) t lies in C t^2 / 2 + W t: for t >= 0 the
+    // extreme slopes are f'(m) + W_lo/hi, for t <= 0 the other way round.
+    const double low = std::min(
+      quadratic_range(value, slope_low, 0.5 * curvature.lower, 0., r).lower,
+      quadratic_range(value, slope_high, 0.5 * curvature.lower, -r, 0.).lower);
+    const double high = std::max(
+      quadratic_range(value, slope_high, 0.5 * curvature.upper, 0., r).upper,
+      quadratic_range(value, slope_low, 0.5 * curvature.upper, -r, 0.).upper);
+    LineEnclosure e;
+    e.value = Interval{low, high}.widened(0., value_margin);
+    e.derivative =
+      (Interval::point(slope) + curvature * Interval{-r, r} + slope_offset)
+        .widened(0., 2. * slope_error);
+    return e;
+  }
+
+
+
+  LineTaylorForm
+  LineTaylorForm::from_enclosure(const double         centre,
+                                 const double         radius,
+                                 const LineValue     &at_centre,
+                                 const LineEnclosure &enclosure,
+                                 const double         value_error)
+  {
+    LineTaylorForm form;
+    form.centre = centre;
+    form.radius = radius;
+    form.value  = at_centre.value;
+    form.slope  = at_centre.derivative;
+    form.slope_offset =
+      bounded(enclosure.derivative) ?
+        enclosure.derivative - Interval::point(at_centre.derivative) :
+        entire;
+    form.value_error = value_error;
+    return form;
+  }
+
+
+
   namespace contact
   {
     namespace
     {
-      constexpr double infinity = std::numeric_limits<double>::infinity();
-      constexpr double unit     = std::numeric_limits<double>::epsilon() / 2.;
+      /** Bound of the relative rounding of the polynomial coefficients below,
+       * relative to the sums of the magnitudes of their terms (about 15 units
+       * of round-off along the longest chain of operations, with a safety
+       * factor). */
+      constexpr double coefficient_rounding = 64. * unit;
 
-      const Interval entire = {-infinity, infinity};
+      /** Relative rounding of the few operations that turn coefficients into
+       * ranges. */
+      constexpr double range_rounding = 8. * unit;
 
-      inline Interval
-      hull(const Interval &a, const Interval &b)
+      /**
+       * A vector linear in t = s - m, y + t z, with the magnitudes of the
+       * terms it was computed from (for its rounding).
+       */
+      struct Linear3
       {
-        return {std::min(a.lower, b.lower), std::max(a.upper, b.upper)};
+        std::array<double, 3> y, z, my, mz;
+      };
+
+      /** A vector quadratic in t, sum_k c[k] t^k, with term magnitudes. */
+      struct Quadratic3
+      {
+        std::array<std::array<double, 3>, 3> c, a;
+      };
+
+      /** A cubic in t, sum_k c[k] t^k, with term magnitudes a[k]: the computed
+       * c[k] is within coefficient_rounding a[k] of the exact one. */
+      struct Cubic
+      {
+        std::array<double, 4> c = {{0., 0., 0., 0.}};
+        std::array<double, 4> a = {{0., 0., 0., 0.}};
+      };
+
+      /** Enclosures of a function and its first two derivatives over |t| <= r.
+       */
+      struct Jet
+      {
+        Interval v, d, dd;
+      };
+
+      using Jet3 = std::array<Jet, 3>;
+
+      /** The vector from vertex j of @p xj to vertex i of @p xi at s = m + t,
+       * (xi - xj) + s (wi - wj), formed from differences (so that it is
+       * accurate relative to its own size). */
+      Linear3
+      difference(const double      *xi,
+                 const double      *wi,
+                 const double      *xj,
+                 const double      *wj,
+                 const double       m,
+                 const unsigned int i,
+                 const unsigned int j)
+      {
+        Linear3 l;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const double dx = xi[3 * i + c] - xj[3 * j + c];
+            const double dw = wi[3 * i + c] - wj[3 * j + c];
+            l.y[c]          = dx + m * dw;
+            l.z[c]          = dw;
+            l.my[c]         = std::abs(dx) + std::abs(m * dw);
+            l.mz[c]         = std::abs(dw);
+          }
+        return l;
       }
 
-      inline Interval
-      negate(const Interval &a)
+      Quadratic3
+      cross(const Linear3 &p, const Linear3 &q)
       {
-        return {-a.upper, -a.lower};
+        const auto x = [](const std::array<double, 3> &a,
+                          const std::array<double, 3> &b,
+                          const unsigned int           c,
+                          const bool                   absolute) {
+          const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+          return absolute ? a[c1] * b[c2] + a[c2] * b[c1] :
+                            a[c1] * b[c2] - a[c2] * b[c1];
+        };
+        Quadratic3 n;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            n.c[0][c] = x(p.y, q.y, c, false);
+            n.c[1][c] = x(p.y, q.z, c, false) + x(p.z, q.y, c, false);
+            n.c[2][c] = x(p.z, q.z, c, false);
+            n.a[0][c] = x(p.my, q.my, c, true);
+            n.a[1][c] = x(p.my, q.mz, c, true) + x(p.mz, q.my, c, true);
+            n.a[2][c] = x(p.mz, q.mz, c, true);
+          }
+        return n;
+      }
+
+      Cubic
+      dot(const Quadratic3 &n, const Linear3 &p)
+      {
+        Cubic r;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            r.c[0] += n.c[0][c] * p.y[c];
+            r.c[1] += n.c[1][c] * p.y[c] + n.c[0][c] * p.z[c];
+            r.c[2] += n.c[2][c] * p.y[c] + n.c[1][c] * p.z[c];
+            r.c[3] += n.c[2][c] * p.z[c];
+            r.a[0] += n.a[0][c] * p.my[c];
+            r.a[1] += n.a[1][c] * p.my[c] + n.a[0][c] * p.mz[c];
+            r.a[2] += n.a[2][c] * p.my[c] + n.a[1][c] * p.mz[c];
+            r.a[3] += n.a[2][c] * p.mz[c];
+          }
+        return r;
+      }
+
+      Cubic
+      operator-(const Cubic &p, const Cubic &q)
+      {
+        Cubic r;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            r.c[k] = p.c[k] - q.c[k];
+            r.a[k] = p.a[k] + q.a[k];
+          }
+        return r;
+      }
+
+      /** c + [-spread, spread] + [min(bend, 0), max(bend, 0)], widened for
+       * the rounding of these operations. */
+      Interval
+      range(const double c, const double bend, const double spread)
+      {
+        const double margin =
+          range_rounding * (std::abs(c) + std::abs(bend) + spread);
+        return {c + std::min(bend, 0.) - spread - margin,
+                c + std::max(bend, 0.) + spread + margin};
+      }
+
+      /** The jet of the cubic over |t| <= r, from its Taylor coefficients
+       * about t = 0 and their rounding bounds. */
+      Jet
+      jet(const Cubic &p, const double r)
+      {
+        const double r2 = r * r * (1. + 2. * unit), r3 = r2 * r * (1. + unit);
+        std::array<double, 4> e;
+        for (unsigned int k = 0; k < 4; ++k)
+          e[k] = coefficient_rounding * p.a[k];
+        const auto &c = p.c;
+        Jet         j;
+        // c0 + c1 t + c2 t^2 + c3 t^3, c1 + 2 c2 t + 3 c3 t^2, 2 c2 + 6 c3 t.
+        j.v  = range(c[0],
+                    c[2] * r2,
+                    std::abs(c[1]) * r + std::abs(c[3]) * r3 + e[0] + e[1] * r +
+                      e[2] * r2 + e[3] * r3);
+        j.d  = range(c[1],
+                    3. * c[3] * r2,
+                    2. * std::abs(c[2]) * r + e[1] + 2. * e[2] * r +
+                      3. * e[3] * r2);
+        j.dd = range(2. * c[2],
+                     0.,
+                     6. * std::abs(c[3]) * r + 2. * e[2] + 6. * e[3] * r);
+        return j;
+      }
+
+      /** The jets of the components of a linear vector over |t| <= r. */
+      Jet3
+      jet(const Linear3 &l, const double r)
+      {
+        Jet3 j;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const double e = 4. * unit * (l.my[c] + l.mz[c] * r);
+            j[c].v         = range(l.y[c], 0., std::abs(l.z[c]) * r + e);
+            j[c].d         = range(l.z[c], 0., 2. * unit * l.mz[c]);
+            j[c].dd        = {0., 0.};
+          }
+        return j;
       }
 
       inline bool
@@ -35,337 +324,398 @@ namespace estep
         return a.lower > 0. || a.upper < 0.;
       }
 
-      // a / b for b not containing 0 (entire otherwise).
+      /** a * b, unbounded instead of NaN (0 * infinity). */
+      inline Interval
+      times(const Interval &a, const Interval &b)
+      {
+        const Interval r = a * b;
+        return (std::isnan(r.lower) || std::isnan(r.upper)) ? entire : r;
+      }
+
+      /** a / b for b not containing 0. */
       inline Interval
       divide(const Interval &a, const Interval &b)
       {
-        if (!excludes_zero(b))
-          return entire;
         const Interval inverse =
           Interval{1. / b.upper, 1. / b.lower}.widened(interval_rounding);
-        return a * inverse;
+        return times(a, inverse);
       }
 
-      inline Interval
-      product(const Interval &a, const Interval &b)
+      inline Jet
+      operator+(const Jet &a, const Jet &b)
       {
-        // Guard against 0 * inf = NaN in unbounded intervals.
-        const Interval r = a * b;
-        if (std::isnan(r.lower) || std::isnan(r.upper))
-          return entire;
-        return r;
+        return {a.v + b.v, a.d + b.d, a.dd + b.dd};
       }
 
-      /** An interval value with an interval derivative in s. */
-      struct Dual
+      inline Jet
+      operator-(const Jet &a, const Jet &b)
       {
-        Interval v, d;
+        return {a.v - b.v, a.d - b.d, a.dd - b.dd};
+      }
+
+      inline Jet
+      operator*(const Jet &a, const Jet &b)
+      {
+        return {times(a.v, b.v),
+                times(a.d, b.v) + times(a.v, b.d),
+                times(a.dd, b.v) + 2. * times(a.d, b.d) + times(a.v, b.dd)};
+      }
+
+      /** a / b (b.v must exclude 0): q' = (a' - q b') / b, q'' = (a'' - 2 q'
+       * b' - q b'') / b. */
+      inline Jet
+      operator/(const Jet &a, const Jet &b)
+      {
+        Jet q;
+        q.v  = divide(a.v, b.v);
+        q.d  = divide(a.d - times(q.v, b.d), b.v);
+        q.dd = divide(a.dd - 2. * times(q.d, b.d) - times(q.v, b.dd), b.v);
+        return q;
+      }
+
+      /** An edge (i, j) of triangle k (0 or 1) crossing the plane of the
+       * other triangle. */
+      struct Edge
+      {
+        unsigned int k, i, j;
       };
 
-      inline Dual
-      operator+(const Dual &a, const Dual &b)
+      /** Everything about a pair along [m - r, m + r] that the cases below
+       * share. */
+      struct PairGeometry
       {
-        return {a.v + b.v, a.d + b.d};
+        const double *x[2], *w[2];
+        double        m, r;
+        /** Face normals (quadratics in t). */
+        Quadratic3 normal[2];
+        /** distance[k][i]: vertex i of triangle k to the plane of the other
+         * (scaled by the length of its normal), and its jet. */
+        Cubic distance[2][3];
+        Jet   distance_jet[2][3];
+        /** Its proven sign, 0 if not proven. */
+        int sign[2][3];
+
+        /** The vector from vertex j of triangle l to vertex i of triangle k.
+         */
+        Linear3
+        vector(const unsigned int k,
+               const unsigned int i,
+               const unsigned int l,
+               const unsigned int j) const
+        {
+          return difference(x[k], w[k], x[l], w[l], m, i, j);
+        }
+
+        /** The jet of the crossing X = x_i + D_i / (D_i - D_j) (x_j - x_i) of
+         * edge e with the other plane, relative to vertex 0 of triangle 0;
+         * false if D_i - D_j is not bounded away from 0. Also returns the jet
+         * of S = D_i - D_j. */
+        bool
+        crossing(const Edge &e, Jet3 &X, Jet &S) const
+        {
+          S = jet(distance[e.k][e.i] - distance[e.k][e.j], r);
+          if (!excludes_zero(S.v))
+            return false;
+          const Jet  t    = distance_jet[e.k][e.i] / S;
+          const Jet3 base = jet(vector(e.k, e.i, 0, 0), r);
+          const Jet3 edge = jet(vector(e.k, e.j, e.k, e.i), r);
+          for (unsigned int c = 0; c < 3; ++c)
+            X[c] = base[c] + t * edge[c];
+          return true;
+        }
+
+        /**
+         * The sign of u(X_e0) - u(X_e1) along d = n0 x n1 for an edge e0 of
+         * triangle 0 and an edge e1 of triangle 1, both crossing: with X on
+         * (a, b) and Y on (c, e), d . (X - Y) has the sign of -orient3d(a, b,
+         * c, e) (D_b - D_a) (E_e - E_c) (derivation in
+         * source/contact/triangle_intersection.cc). 0 if not proven.
+         */
+        int
+        order(const Edge &e0, const Edge &e1) const
+        {
+          const Cubic det =
+            dot(cross(vector(0, e0.j, 0, e0.i), vector(1, e1.i, 0, e0.i)),
+                vector(1, e1.j, 0, e0.i));
+          const Interval o = jet(det, r).v;
+          if (!excludes_zero(o))
+            return 0;
+          return (o.lower > 0. ? -1 : 1) * sign[0][e0.j] * sign[1][e1.j];
+        }
+      };
+
+      /** The largest length of a linear vector over |t| <= r. */
+      double
+      max_length(const Linear3 &l, const double r)
+      {
+        double s = 0.;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const double x = std::abs(l.y[c]) + std::abs(l.z[c]) * r;
+            s += x * x;
+          }
+        return std::sqrt(s) * (1. + 4. * unit);
       }
 
-      inline Dual
-      operator-(const Dual &a, const Dual &b)
+      /** The smallest length of a linear vector over |t| <= r (or 0). */
+      double
+      min_length(const Linear3 &l, const double r)
       {
-        return {a.v - b.v, a.d - b.d};
+        double y = 0., z = 0.;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            y += l.y[c] * l.y[c];
+            z += l.z[c] * l.z[c];
+          }
+        return std::max((std::sqrt(y) - std::sqrt(z) * r) * (1. - 4. * unit),
+                        0.);
       }
 
-      inline Dual
-      operator*(const Dual &a, const Dual &b)
+      /** The largest magnitude of a quadratic vector over |t| <= r. */
+      double
+      max_length(const Quadratic3 &n, const double r)
       {
-        return {product(a.v, b.v), product(a.d, b.v) + product(a.v, b.d)};
-      }
-
-      inline Dual
-      operator/(const Dual &a, const Dual &b)
-      {
-        if (!excludes_zero(b.v))
-          return {entire, entire};
-        const Interval value = divide(a.v, b.v);
-        const Interval slope =
-          divide(product(a.d, b.v) - product(a.v, b.d), product(b.v, b.v));
-        return {value, slope};
-      }
-
-      using Dual3 = std::array<Dual, 3>;
-
-      inline Dual3
-      operator-(const Dual3 &a, const Dual3 &b)
-      {
-        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
-      }
-
-      inline Dual3
-      cross(const Dual3 &a, const Dual3 &b)
-      {
-        return {{a[1] * b[2] - a[2] * b[1],
-                 a[2] * b[0] - a[0] * b[2],
-                 a[0] * b[1] - a[1] * b[0]}};
-      }
-
-      inline Dual
-      dot(const Dual3 &a, const Dual3 &b)
-      {
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      }
-
-      inline double
-      magnitude(const Interval &a)
-      {
-        return std::max(std::abs(a.lower), std::abs(a.upper));
+        double s = 0.;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const double x = std::abs(n.c[0][c]) + std::abs(n.c[1][c]) * r +
+                             std::abs(n.c[2][c]) * r * r +
+                             coefficient_rounding *
+                               (n.a[0][c] + n.a[1][c] * r + n.a[2][c] * r * r);
+            s += x * x;
+          }
+        return std::sqrt(s) * (1. + 4. * unit);
       }
 
       /**
-       * A chord end of one triangle on the common line: the candidates that
-       * may produce it, as an interval min (lo) or max (hi) over a set of
-       * possibly active candidates, some of them certainly active.
+       * The stated round-off bounds of a computed crossing point of edge @p e
+       * (position error) and of its velocity (see the header), from the jet of
+       * S = D_i - D_j.
        */
-      struct ChordEnd
+      struct CrossingError
       {
-        Interval value;
-        Interval slope;
+        double position, velocity;
       };
 
-      struct Candidate
+      CrossingError
+      crossing_error(const PairGeometry &g,
+                     const Edge         &e,
+                     const Jet          &S,
+                     const double        L,
+                     const double        w_max)
       {
-        Dual u;
-        bool certain;
-      };
-
-      // lo = min over the active candidates (is_min) or hi = max.
-      ChordEnd
-      extremum(const std::array<Candidate, 3> &c,
-               const unsigned int              n,
-               const bool                      is_min)
-      {
-        // For the minimum: lower bound = min of all lowers, upper bound = min
-        // of the uppers of certain members. Mirror for the maximum.
-        double outer = is_min ? infinity : -infinity;
-        double inner = is_min ? infinity : -infinity;
-        for (unsigned int i = 0; i < n; ++i)
-          if (is_min)
-            {
-              outer = std::min(outer, c[i].u.v.lower);
-              if (c[i].certain)
-                inner = std::min(inner, c[i].u.v.upper);
-            }
-          else
-            {
-              outer = std::max(outer, c[i].u.v.upper);
-              if (c[i].certain)
-                inner = std::max(inner, c[i].u.v.lower);
-            }
-        ChordEnd e;
-        e.value    = is_min ? Interval{outer, inner} : Interval{inner, outer};
-        bool first = true;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const bool can_be_extremum =
-              is_min ? c[i].u.v.lower <= inner : c[i].u.v.upper >= inner;
-            if (!can_be_extremum)
-              continue;
-            e.slope = first ? c[i].u.d : hull(e.slope, c[i].u.d);
-            first   = false;
-          }
-        if (first)
-          e.slope = entire;
-        return e;
+        const unsigned int f                  = 1 - e.k;
+        double             shortest_face_edge = infinity;
+        for (unsigned int i = 0; i < 3; ++i)
+          shortest_face_edge =
+            std::min(shortest_face_edge,
+                     min_length(g.vector(f, (i + 1) % 3, f, i), g.r));
+        const double edge  = max_length(g.vector(e.k, e.j, e.k, e.i), g.r);
+        const double S_min = std::min(std::abs(S.v.lower), std::abs(S.v.upper));
+        // 1 / sin(angle between edge and plane) = |n| |e| / |S|.
+        const double inverse_sine = max_length(g.normal[f], g.r) * edge / S_min;
+        CrossingError error;
+        error.position =
+          256. * unit * (L + edge * L / shortest_face_edge) * inverse_sine;
+        error.velocity = error.position * (w_max / L + magnitude(S.d) / S_min);
+        return error;
       }
 
-      // min (is_min) or max of two chord ends.
-      ChordEnd
-      extremum(const ChordEnd &x, const ChordEnd &y, const bool is_min)
+      /** Largest |X| over the jet's values, and largest |X'|. */
+      double
+      max_value(const Jet3 &X)
       {
-        ChordEnd e;
-        if (is_min)
-          e.value = {std::min(x.value.lower, y.value.lower),
-                     std::min(x.value.upper, y.value.upper)};
-        else
-          e.value = {std::max(x.value.lower, y.value.lower),
-                     std::max(x.value.upper, y.value.upper)};
-        const bool x_can = is_min ? x.value.lower <= e.value.upper :
-                                    x.value.upper >= e.value.lower;
-        const bool y_can = is_min ? y.value.lower <= e.value.upper :
-                                    y.value.upper >= e.value.lower;
-        if (x_can && y_can)
-          e.slope = hull(x.slope, y.slope);
-        else
-          e.slope = x_can ? x.slope : y.slope;
-        return e;
+        double s = 0.;
+        for (const Jet &c : X)
+          s += magnitude(c.v) * magnitude(c.v);
+        return std::sqrt(s);
       }
 
-      /**
-       * The chord ends (lo, hi) of triangle X (vertex distances D to the
-       * other plane) along the direction d. Returns false if the triangle
-       * cannot meet the plane.
-       */
-      bool
-      chord(const std::array<Dual3, 3> &X,
-            const std::array<Dual, 3>  &D,
-            const Dual3                &d,
-            ChordEnd                   &lo,
-            ChordEnd                   &hi)
+      double
+      max_rate(const Jet3 &X)
       {
-        bool all_positive = true, all_negative = true;
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            all_positive = all_positive && D[i].v.lower > 0.;
-            all_negative = all_negative && D[i].v.upper < 0.;
-          }
-        if (all_positive || all_negative)
-          return false;
+        double s = 0.;
+        for (const Jet &c : X)
+          s += magnitude(c.d) * magnitude(c.d);
+        return std::sqrt(s);
+      }
 
-        std::array<Dual, 3> u_vertex;
-        for (unsigned int i = 0; i < 3; ++i)
-          u_vertex[i] = dot(d, X[i]);
-
-        std::array<Candidate, 3> candidates;
-        unsigned int             n = 0;
-        for (unsigned int e = 0; e < 3; ++e)
-          {
-            const unsigned int i = e, j = (e + 1) % 3;
-            const Interval    &di = D[i].v, &dj = D[j].v;
-            const bool         possible = (di.lower <= 0. && dj.upper >= 0.) ||
-                                  (di.upper >= 0. && dj.lower <= 0.);
-            if (!possible)
-              continue;
-            const bool certain = (di.lower > 0. && dj.upper < 0.) ||
-                                 (di.upper < 0. && dj.lower > 0.);
-            Candidate c;
-            c.certain            = certain;
-            const Dual     denom = D[i] - D[j];
-            const Interval edge_hull =
-              hull(u_vertex[i].v, u_vertex[j].v).widened(interval_rounding);
-            if (excludes_zero(denom.v))
-              {
-                const Dual  t = D[i] / denom;
-                const Dual3 P = {{X[i][0] + t * (X[j][0] - X[i][0]),
-                                  X[i][1] + t * (X[j][1] - X[i][1]),
-                                  X[i][2] + t * (X[j][2] - X[i][2])}};
-                c.u           = dot(d, P);
-                // An active crossing lies on the edge.
-                c.u.v.lower = std::max(c.u.v.lower, edge_hull.lower);
-                c.u.v.upper = std::min(c.u.v.upper, edge_hull.upper);
-                if (c.u.v.lower > c.u.v.upper)
-                  c.u.v = edge_hull;
-              }
-            else
-              c.u = {edge_hull, entire};
-            candidates[n++] = c;
-          }
-        if (n == 0)
-          return false;
-        lo = extremum(candidates, n, true);
-        hi = extremum(candidates, n, false);
-        return true;
+      /** value_error and slope_error of g = |Delta|^2 and g' = 2 Delta .
+       * Delta' from the errors of the end points, |Delta| <= length and
+       * |Delta'| <= rate. */
+      void
+      set_errors(LineTaylorForm &form,
+                 const double    length,
+                 const double    rate,
+                 const double    position_error,
+                 const double    velocity_error)
+      {
+        const double dp = 2. * position_error, dv = 2. * velocity_error;
+        form.value_error =
+          2. * length * dp + dp * dp + 4. * unit * length * length;
+        form.slope_error =
+          2. * (dp * rate + length * dv + dp * dv) + 8. * unit * length * rate;
       }
     } // namespace
 
 
 
-    PenaltyEnclosure
-    enclose_squared_intersection_length(const double *x0,
-                                        const double *w0,
-                                        const double *x1,
-                                        const double *w1,
-                                        const double  a,
-                                        const double  b)
+    LineTaylorForm
+    squared_intersection_length_form(const double *x0,
+                                     const double *w0,
+                                     const double *x1,
+                                     const double *w1,
+                                     const double  m,
+                                     const double  r)
     {
-      const Interval          S = {a, b};
-      std::array<Dual3, 3>    P, Q;
-      double                  L = 0.;
-      std::array<Interval, 3> box0, box1;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            const unsigned int m = 3 * i + k;
-            P[i][k]              = {Interval::point(x0[m]) + w0[m] * S,
-                                    Interval::point(w0[m])};
-            Q[i][k]              = {Interval::point(x1[m]) + w1[m] * S,
-                                    Interval::point(w1[m])};
-            L       = std::max({L, magnitude(P[i][k].v), magnitude(Q[i][k].v)});
-            box0[k] = (i == 0) ? P[i][k].v : hull(box0[k], P[i][k].v);
-            box1[k] = (i == 0) ? Q[i][k].v : hull(box1[k], Q[i][k].v);
-          }
-      const PenaltyEnclosure zero = {{0., 0.}, {0., 0.}};
+      LineTaylorForm form;
+      form.centre = m;
+      form.radius = r;
 
-      const Dual3         n0 = cross(P[1] - P[0], P[2] - P[0]);
-      const Dual3         n1 = cross(Q[1] - Q[0], Q[2] - Q[0]);
-      std::array<Dual, 3> D0, D1;
-      for (unsigned int i = 0; i < 3; ++i)
-        {
-          D0[i] = dot(n1, P[i] - Q[0]);
-          D1[i] = dot(n0, Q[i] - P[0]);
-        }
-      const Dual3 d  = cross(n0, n1);
-      const Dual  dd = dot(d, d);
-
-      ChordEnd lo0, hi0, lo1, hi1;
-      if (!chord(P, D0, d, lo0, hi0) || !chord(Q, D1, d, lo1, hi1))
-        return zero;
-
-      // Nearly parallel planes: a crude but valid bound.
-      if (!(dd.v.lower > 0.))
-        {
-          double diameter2 = 0.;
-          for (unsigned int k = 0; k < 3; ++k)
+      // Value and slope at the centre, as the point evaluation computes them.
+      PairGeometry g;
+      g.x[0] = x0, g.x[1] = x1, g.w[0] = w0, g.w[1] = w1;
+      g.m = m, g.r = r;
+      Triangle3 T[2];
+      double    L = 0., w_max = 0.;
+      for (unsigned int k = 0; k < 2; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int c = 0; c < 3; ++c)
             {
-              const double extent = std::min(box0[k].upper, box1[k].upper) -
-                                    std::max(box0[k].lower, box1[k].lower);
-              if (extent < 0.)
-                return zero;
-              diameter2 += extent * extent;
+              const double x = g.x[k][3 * i + c], w = g.w[k][3 * i + c];
+              T[k][i][c] = x + m * w;
+              L          = std::max(L, std::abs(T[k][i][c]) + std::abs(w) * r);
+              w_max      = std::max(w_max, std::abs(w));
             }
-          return {Interval{0., diameter2}.widened(1e-12, 0.), entire};
-        }
+      std::array<double, 18> gradient;
+      form.value = squared_intersection_length(T[0], T[1], &gradient);
+      for (unsigned int k = 0; k < 2; ++k)
+        for (unsigned int n = 0; n < 9; ++n)
+          form.slope += gradient[9 * k + n] * g.w[k][n];
 
-      const ChordEnd B   = extremum(hi0, hi1, true);
-      const ChordEnd A   = extremum(lo0, lo1, false);
-      const Dual     len = {B.value - A.value, B.slope - A.slope};
-      if (len.v.upper <= 0.)
-        return zero;
-      Dual positive_len = len;
-      if (len.v.lower <= 0.)
+      // Normals and vertex-plane distances.
+      for (unsigned int k = 0; k < 2; ++k)
+        g.normal[k] = cross(g.vector(k, 1, k, 0), g.vector(k, 2, k, 0));
+      bool proven = true;
+      for (unsigned int k = 0; k < 2; ++k)
         {
-          positive_len.v.lower = 0.;
-          positive_len.d       = hull(len.d, Interval{0., 0.});
+          int n_positive = 0, n_negative = 0;
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              g.distance[k][i] = dot(g.normal[1 - k], g.vector(k, i, 1 - k, 0));
+              g.distance_jet[k][i] = jet(g.distance[k][i], r);
+              const Interval &D    = g.distance_jet[k][i].v;
+              g.sign[k][i]         = D.lower > 0. ? 1 : (D.upper < 0. ? -1 : 0);
+              n_positive += g.sign[k][i] > 0;
+              n_negative += g.sign[k][i] < 0;
+              proven = proven && g.sign[k][i] != 0;
+            }
+          if (n_positive == 3 || n_negative == 3)
+            return form; // one side of the plane: g = 0 on the interval
         }
-      const Dual g = (positive_len * positive_len) / dd;
 
-      // Round-off of the floating-point end points in
-      // squared_intersection_length(): 256 u L / sin(angle) per coordinate,
-      // sin(angle) = |d| / (|n0| |n1|).
-      double n0_max = 0., n1_max = 0.;
-      for (unsigned int k = 0; k < 3; ++k)
+      if (proven)
         {
-          n0_max += magnitude(n0[k].v) * magnitude(n0[k].v);
-          n1_max += magnitude(n1[k].v) * magnitude(n1[k].v);
+          // The chord of each triangle on the common line runs between the
+          // crossings of the two edges at its alone vertex; for triangle 0,
+          // d . (X_ik - X_ij) has the sign of -D_i (i alone, j = i + 1, k =
+          // i + 2), for triangle 1 that of +D_i (d = n0 x n1).
+          Edge low[2], high[2];
+          for (unsigned int k = 0; k < 2; ++k)
+            {
+              unsigned int alone = 0;
+              for (unsigned int i = 0; i < 3; ++i)
+                if (g.sign[k][i] != g.sign[k][(i + 1) % 3] &&
+                    g.sign[k][i] != g.sign[k][(i + 2) % 3])
+                  alone = i;
+              const Edge next        = {k, alone, (alone + 1) % 3};
+              const Edge other       = {k, alone, (alone + 2) % 3};
+              const bool next_is_low = (k == 0) == (g.sign[k][alone] < 0);
+              low[k]                 = next_is_low ? next : other;
+              high[k]                = next_is_low ? other : next;
+            }
+          // A = the later start, B = the earlier end along d.
+          const int start_order = g.order(low[0], low[1]);
+          const int end_order   = g.order(high[0], high[1]);
+          if (start_order != 0 && end_order != 0)
+            {
+              const Edge &A = start_order > 0 ? low[0] : low[1];
+              const Edge &B = end_order < 0 ? high[0] : high[1];
+              const int   length_sign =
+                A.k == B.k ? 1 : (A.k == 0 ? -g.order(A, B) : g.order(B, A));
+              if (length_sign < 0)
+                return form; // the chords do not overlap: g = 0
+              Jet3 XA, XB;
+              Jet  SA, SB;
+              if (g.crossing(A, XA, SA) && g.crossing(B, XB, SB))
+                {
+                  Jet3 delta;
+                  for (unsigned int c = 0; c < 3; ++c)
+                    delta[c] = XB[c] - XA[c];
+                  const Jet squared = delta[0] * delta[0] +
+                                      delta[1] * delta[1] + delta[2] * delta[2];
+                  form.curvature         = length_sign > 0 ?
+                                             squared.dd :
+                                             hull(squared.dd, Interval{0., 0.});
+                  const CrossingError eA = crossing_error(g, A, SA, L, w_max);
+                  const CrossingError eB = crossing_error(g, B, SB, L, w_max);
+                  set_errors(form,
+                             max_value(delta),
+                             max_rate(delta),
+                             std::max(eA.position, eB.position),
+                             std::max(eA.velocity, eB.velocity));
+                  return form;
+                }
+            }
         }
-      const double inverse_sine = std::sqrt(n0_max * n1_max / dd.v.lower) + 1.;
-      const double point_error = 256. * unit * L * inverse_sine * std::sqrt(3.);
-      const double length_max  = std::sqrt(std::max(g.v.upper, 0.));
-      const double value_margin =
-        4. * point_error * length_max + 4. * point_error * point_error;
 
-      PenaltyEnclosure r;
-      r.value       = g.v.widened(interval_rounding, value_margin);
-      r.value.lower = std::max(r.value.lower, 0.);
-      if (len.v.lower <= 0.)
-        r.value.lower = 0.;
-      double w_max = 0.;
-      for (unsigned int k = 0; k < 9; ++k)
-        w_max = std::max({w_max, std::abs(w0[k]), std::abs(w1[k])});
-      r.derivative =
-        g.d.widened(1e-12, 8. * point_error * w_max * inverse_sine);
-      if (std::isnan(r.derivative.lower) || std::isnan(r.derivative.upper))
-        r.derivative = entire;
-      if (std::isnan(r.value.lower) || std::isnan(r.value.upper))
-        r.value = entire;
-      return r;
+      // A kink is possible (a vertex may cross a plane, or chord ends may
+      // swap): the slope lies in the hull of 0 and of the slopes of |X_e' -
+      // X_e|^2 over pairs of edges that may generate the end points.
+      std::array<Jet3, 6> X;
+      unsigned int        n_edges        = 0;
+      double              position_error = 0., velocity_error = 0.;
+      for (unsigned int k = 0; k < 2; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            const unsigned int j  = (i + 1) % 3;
+            const Interval    &Di = g.distance_jet[k][i].v;
+            const Interval    &Dj = g.distance_jet[k][j].v;
+            if (!((Di.lower <= 0. && Dj.upper >= 0.) ||
+                  (Di.upper >= 0. && Dj.lower <= 0.)))
+              continue;
+            Jet        S;
+            const Edge e = {k, i, j};
+            if (!g.crossing(e, X[n_edges], S))
+              {
+                form.slope_offset = entire;
+                form.value_error  = infinity;
+                return form;
+              }
+            const CrossingError error = crossing_error(g, e, S, L, w_max);
+            position_error = std::max(position_error, error.position);
+            velocity_error = std::max(velocity_error, error.velocity);
+            ++n_edges;
+          }
+      Interval slopes = {0., 0.};
+      double   length = 0., rate = 0.;
+      for (unsigned int p = 0; p < n_edges; ++p)
+        for (unsigned int q = p + 1; q < n_edges; ++q)
+          {
+            Interval s = {0., 0.};
+            Jet3     delta;
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                delta[c] = X[q][c] - X[p][c];
+                s        = s + 2. * times(delta[c].v, delta[c].d);
+              }
+            slopes = hull(slopes, s);
+            length = std::max(length, max_value(delta));
+            rate   = std::max(rate, max_rate(delta));
+          }
+      form.slope_offset = slopes - Interval::point(form.slope);
+      set_errors(form, length, rate, position_error, velocity_error);
+      return form;
     }
 
 
@@ -391,31 +741,67 @@ namespace estep
     void
     PenaltyFlight::update_candidates(const double a, const double b) const
     {
-      // Reuse the candidates of a containing interval unless it is much
-      // longer (loose swept boxes give many needless candidates).
-      if (cached && a >= cache_a && b <= cache_b &&
-          (a == b || cache_b - cache_a <= 4. * (b - a)))
-        return;
-      const std::size_t n = q.size();
-      scratch.resize(n);
-      for (std::size_t i = 0; i < n; ++i)
-        scratch[i] = q[i] + a * v[i];
-      // The computed positions q + s v may differ from the box corners by a
-      // few units of round-off.
-      const double margin = 8. * unit * (max_q + std::abs(b) * max_v) +
-                            std::numeric_limits<double>::min();
-      bvh.build_swept(scratch.data(), v.data(), n, b - a, margin);
-      bvh.find_pairs(pairs);
-      pairs.erase(std::remove_if(pairs.begin(),
-                                 pairs.end(),
-                                 [this](const auto &p) {
-                                   return contact.excluded_by_group(p.first,
-                                                                    p.second);
-                                 }),
-                  pairs.end());
-      cached  = true;
-      cache_a = a;
-      cache_b = b;
+      // The computed positions q + s v may differ from the exact ones (and
+      // the box corners) by a few units of round-off.
+      const double margin =
+        8. * unit * (max_q + std::max(std::abs(a), std::abs(b)) * max_v) +
+        std::numeric_limits<double>::min();
+      if (!(cached && a >= cache_a && b <= cache_b))
+        {
+          // A broad phase over [a, a + 4 (b - a)]: the search examines [a, b]
+          // and its parts, then the next, twice longer window.
+          const double      end = a + 4. * (b - a);
+          const std::size_t n   = q.size();
+          scratch.resize(n);
+          for (std::size_t i = 0; i < n; ++i)
+            scratch[i] = q[i] + a * v[i];
+          bvh.build_swept(scratch.data(),
+                          v.data(),
+                          n,
+                          end - a,
+                          margin + 8. * unit * std::abs(end) * max_v);
+          bvh.find_pairs(broad_pairs);
+          broad_pairs.erase(std::remove_if(broad_pairs.begin(),
+                                           broad_pairs.end(),
+                                           [this](const auto &p) {
+                                             return contact.excluded_by_group(
+                                               p.first, p.second);
+                                           }),
+                            broad_pairs.end());
+          cached  = true;
+          cache_a = a;
+          cache_b = end;
+        }
+      // The pairs of the broad phase whose boxes swept over [a, b] overlap.
+      const auto &tris = contact.get_triangles();
+      const auto box = [&](const unsigned int t, double *lower, double *upper) {
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            lower[k] = infinity;
+            upper[k] = -infinity;
+          }
+        for (const unsigned int i : tris[t])
+          for (unsigned int k = 0; k < 3; ++k)
+            for (const double s : {a, b})
+              {
+                const double x = q[3 * i + k] + s * v[3 * i + k];
+                lower[k]       = std::min(lower[k], x - margin);
+                upper[k]       = std::max(upper[k], x + margin);
+              }
+      };
+      pairs.clear();
+      for (const auto &p : broad_pairs)
+        {
+          double lower[2][3], upper[2][3];
+          box(p.first, lower[0], upper[0]);
+          box(p.second, lower[1], upper[1]);
+          bool overlap = true;
+          for (unsigned int k = 0; k < 3; ++k)
+            overlap = overlap && lower[0][k] <= upper[1][k] &&
+                      lower[1][k] <= upper[0][k];
+          if (overlap)
+            pairs.push_back(p);
+        }
     }
 
 
@@ -489,15 +875,15 @@ namespace estep
 
 
 
-    PenaltyEnclosure
-    PenaltyFlight::enclose(const double a, const double b) const
+    LineTaylorForm
+    PenaltyFlight::taylor_form(const double a, const double b) const
     {
       if (!(a <= b))
-        throw std::invalid_argument("PenaltyFlight::enclose: a > b");
+        throw std::invalid_argument("PenaltyFlight::taylor_form: a > b");
       update_candidates(a, b);
-      const auto &tris  = contact.get_triangles();
-      Interval    value = {0., 0.}, slope = {0., 0.};
-      double      x[2][9], w[2][9];
+      LineTaylorForm sum  = LineTaylorForm::about_centre_of(a, b);
+      const auto    &tris = contact.get_triangles();
+      double         x[2][9], w[2][9];
       for (const auto &[i, j] : pairs)
         {
           const TriangleIndices *t[2] = {&tris[i], &tris[j]};
@@ -508,35 +894,28 @@ namespace estep
                   x[m][3 * p + k] = q[3 * (*t[m])[p] + k];
                   w[m][3 * p + k] = v[3 * (*t[m])[p] + k];
                 }
-          const PenaltyEnclosure e =
-            enclose_squared_intersection_length(x[0], w[0], x[1], w[1], a, b);
-          if (e.value.upper == 0. && e.derivative.lower == 0. &&
-              e.derivative.upper == 0.)
-            continue;
-          value += e.value;
-          slope += e.derivative;
+          sum += squared_intersection_length_form(
+            x[0], w[0], x[1], w[1], sum.centre, sum.radius);
         }
-      const double     scale = 1. / (2. * contact.get_eps());
-      PenaltyEnclosure r     = {scale * value, scale * slope};
-      // Mean-value form: I(s) in I(m) + I'([a, b]) (s - m). Its excess is
-      // quadratic in b - a, so it decides near-tangential approaches to a
-      // level that the direct enclosure (linear excess) cannot. The point
-      // value is widened for its round-off.
-      if (b > a && std::isfinite(r.derivative.lower) &&
-          std::isfinite(r.derivative.upper))
-        {
-          const double   m       = 0.5 * (a + b);
-          const double   I_m     = this->value(m);
-          const Interval centre  = Interval::point(I_m).widened(1e-12, 0.);
-          const Interval offsets = {a - m, b - m};
-          const Interval mv      = centre + r.derivative * offsets;
-          r.value.lower          = std::max(r.value.lower, mv.lower);
-          r.value.upper          = std::min(r.value.upper, mv.upper);
-          if (r.value.lower > r.value.upper)
-            r.value = Interval::hull(mv.lower, mv.upper);
-          r.value.lower = std::max(r.value.lower, 0.);
-        }
-      return r;
+      return sum.scaled(1. / (2. * contact.get_eps()));
+    }
+
+
+
+    LineEnclosure
+    PenaltyFlight::enclose(const double a, const double b) const
+    {
+      return taylor_form(a, b).enclosure();
+    }
+
+
+
+    double
+    PenaltyFlight::value_tolerance() const
+    {
+      if (tolerance < 0.)
+        tolerance = taylor_form(0., 0.).value_error;
+      return tolerance;
     }
   } // namespace contact
 } // namespace estep

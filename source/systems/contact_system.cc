@@ -19,6 +19,19 @@ namespace estep
   namespace
   {
     constexpr double infinity = std::numeric_limits<double>::infinity();
+    constexpr double epsilon  = std::numeric_limits<double>::epsilon();
+
+    /** The common part of two enclosures of the same quantity (their hull
+     * if they do not overlap, which valid enclosures always do). */
+    Interval
+    intersection(const Interval &x, const Interval &y)
+    {
+      const Interval common = {std::max(x.lower, y.lower),
+                               std::min(x.upper, y.upper)};
+      if (common.lower <= common.upper)
+        return common;
+      return {std::min(x.lower, y.lower), std::max(x.upper, y.upper)};
+    }
 
     /** The free flight of a ContactSystem: the bodies' flights plus the
      * penalty flight. */
@@ -75,23 +88,60 @@ namespace estep
         return total;
       }
 
+      /**
+       * One second-order form of the whole V about the centre of [a, b]: the
+       * values and slopes of the parts at the centre are added before any
+       * interval is formed (where the slopes of the parts are large and of
+       * opposite signs, a sum of separate enclosures is wide), then their
+       * curvature and slope offset intervals. The bodies enter with the
+       * first-order form of their enclosures
+       * (LineTaylorForm::from_enclosure()). The result is intersected with the
+       * sum of the parts' own enclosures, which is tighter where no slopes
+       * cancel (the bodies' enclosures keep the sign of their curvature).
+       */
       LineEnclosure
       enclose(const double a, const double b) const override
       {
-        LineEnclosure total = {{0., 0.}, {0., 0.}};
+        LineTaylorForm form = LineTaylorForm::about_centre_of(a, b);
+        LineEnclosure  sum  = {{0., 0.}, {0., 0.}};
         for (const auto &f : bodies)
           {
             const LineEnclosure e = f->enclose(a, b);
-            total.value += e.value;
-            total.derivative += e.derivative;
+            sum.value += e.value;
+            sum.derivative += e.derivative;
+            // The round-off of a body's values: its tolerance at s = 0 plus
+            // 64 epsilon of the value (the margin of its own enclosures).
+            const LineValue at_centre = f->value_and_derivative(form.centre);
+            form += LineTaylorForm::from_enclosure(
+              form.centre,
+              form.radius,
+              at_centre,
+              e,
+              f->value_tolerance() + 64. * epsilon * std::abs(at_centre.value));
           }
         if (penalty_flight)
           {
-            const contact::PenaltyEnclosure e = penalty_flight->enclose(a, b);
-            total.value += e.value;
-            total.derivative += e.derivative;
+            const LineTaylorForm p = penalty_flight->taylor_form(a, b);
+            const LineEnclosure  e = p.enclosure();
+            sum.value += e.value;
+            sum.derivative += e.derivative;
+            form += p;
           }
-        return total;
+        const LineEnclosure combined = form.enclosure();
+        return {intersection(combined.value, sum.value),
+                intersection(combined.derivative, sum.derivative)};
+      }
+
+      /** The sum of the parts' round-off bounds at the start. */
+      double
+      value_tolerance() const override
+      {
+        double tolerance = 0.;
+        for (const auto &f : bodies)
+          tolerance += f->value_tolerance();
+        if (penalty_flight)
+          tolerance += penalty_flight->value_tolerance();
+        return tolerance;
       }
 
       double

@@ -1,5 +1,7 @@
 // The contact system: ball mesh, layout, gradient against central differences,
-// free-flight enclosures against samples, observables, parameters.
+// free-flight enclosures against samples (second-order forms of single
+// triangle pairs in generic and degenerate motions, and of whole flights),
+// observables, parameters.
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
@@ -13,10 +15,12 @@
 
 #include "contact_test_bodies.h"
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 using estep::ContactParameters;
 using estep::Vector;
@@ -61,12 +65,16 @@ TEST(BallMesh, SeedSizeAndReproducible)
   ASSERT_EQ(tria.n_vertices(), again.n_vertices());
   ASSERT_EQ(tria.n_active_cells(), again.n_active_cells());
   for (unsigned int i = 0; i < tria.n_vertices(); ++i)
-    EXPECT_EQ(tria.get_vertices()[i], again.get_vertices()[i]);
+    {
+      EXPECT_EQ(tria.get_vertices()[i], again.get_vertices()[i]);
+    }
   // Boundary vertices on the unit sphere.
   for (const auto &face : tria.active_face_iterators())
     if (face->at_boundary())
       for (const unsigned int v : face->vertex_indices())
-        EXPECT_NEAR(face->vertex(v).norm(), 1., 1e-14);
+        {
+          EXPECT_NEAR(face->vertex(v).norm(), 1., 1e-14);
+        }
 }
 
 TEST(ContactSystem, LayoutAndBoundaryMap)
@@ -275,6 +283,144 @@ TEST(ContactSystem, PenaltyEnclosuresTighten)
       previous = e.value.width();
     }
   std::cout << std::endl;
+}
+
+TEST(LineTaylorForm, QuadraticAndKink)
+{
+  // f(s) = s^2 on [0, 1]: exact range from the form about 0.5.
+  estep::LineTaylorForm square = estep::LineTaylorForm::about_centre_of(0., 1.);
+  square.value                 = 0.25;
+  square.slope                 = 1.;
+  square.curvature             = {2., 2.};
+  const auto e                 = square.enclosure();
+  // (up to the outward rounding of a few units of round-off)
+  EXPECT_NEAR(e.value.lower, 0., 1e-14);
+  EXPECT_NEAR(e.value.upper, 1., 1e-14);
+  EXPECT_NEAR(e.derivative.lower, 0., 1e-14);
+  EXPECT_NEAR(e.derivative.upper, 2., 1e-14);
+
+  // f(s) = |s - 0.3| + s^2 (a kink: f' jumps by 2): W = [-2, 0] about 0.5.
+  estep::LineTaylorForm kink = estep::LineTaylorForm::about_centre_of(0., 1.);
+  kink.value                 = 0.2 + 0.25;
+  kink.slope                 = 1. + 1.;
+  kink.slope_offset          = {-2., 0.};
+  estep::LineTaylorForm sum  = estep::LineTaylorForm::about_centre_of(0., 1.);
+  sum += kink;
+  sum.curvature = {2., 2.};
+  const auto k  = sum.enclosure();
+  for (unsigned int j = 0; j <= 100; ++j)
+    {
+      const double s = j / 100.;
+      EXPECT_TRUE(k.value.contains(std::abs(s - 0.3) + s * s));
+      EXPECT_TRUE(k.derivative.contains((s < 0.3 ? -1. : 1.) + 2. * s));
+    }
+  // Forms about different intervals do not add.
+  EXPECT_THROW(sum += estep::LineTaylorForm::about_centre_of(0., 2.),
+               std::logic_error);
+}
+
+// Random pairs of triangles moving on straight lines (generic, nearly
+// parallel, a vertex sliding in the other plane, far from the origin) on
+// intervals of widths 1e-8 ... 1 about times near their contact: the
+// enclosures of the second-order form hold the computed g and g' (as the
+// penalty energy evaluates them) at 21 points each.
+TEST(ContactSystem, PenaltyPairFormsHoldSampledValues)
+{
+  std::mt19937_64                        rng(2024);
+  std::uniform_real_distribution<double> u(-1., 1.), u01(0., 1.);
+  unsigned int n_samples = 0, n_outside = 0, n_positive = 0, n_smooth = 0,
+               n_bounded = 0, n_forms = 4000;
+  for (unsigned int trial = 0; trial < n_forms; ++trial)
+    {
+      const unsigned int kind = trial % 4;
+      double             x0[9], w0[9], x1[9], w1[9];
+      for (unsigned int i = 0; i < 9; ++i)
+        {
+          x0[i] = u(rng);
+          w0[i] = u(rng);
+        }
+      // T1 about a point of T0 at s0.
+      const double s0 = u01(rng), b0 = u01(rng), b1 = u01(rng) * (1. - b0);
+      double       c[3];
+      for (unsigned int k = 0; k < 3; ++k)
+        c[k] = (1. - b0 - b1) * (x0[k] + s0 * w0[k]) +
+               b0 * (x0[3 + k] + s0 * w0[3 + k]) +
+               b1 * (x0[6 + k] + s0 * w0[6 + k]);
+      const double size = std::pow(10., -3. * u01(rng));
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const unsigned int n = 3 * i + k;
+            // Nearly parallel: a shrunk copy of T0, slightly tilted.
+            const double offset =
+              kind == 1 ? 0.7 * (x0[n] + s0 * w0[n] - c[k]) + 1e-3 * u(rng) :
+                          u(rng);
+            w1[n] = kind == 1 ? w0[n] + 1e-2 * u(rng) : u(rng);
+            x1[n] = c[k] + size * offset - s0 * w1[n];
+          }
+      if (kind == 2)
+        // Vertex 0 of T1 moves with a point of T0's plane.
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            x1[k] = 0.5 * x0[k] + 0.3 * x0[3 + k] + 0.2 * x0[6 + k];
+            w1[k] = 0.5 * w0[k] + 0.3 * w0[3 + k] + 0.2 * w0[6 + k];
+          }
+      if (kind == 3)
+        {
+          const double shift = std::pow(10., 3. * u01(rng));
+          for (unsigned int i = 0; i < 9; ++i)
+            {
+              x0[i] += shift;
+              x1[i] += shift;
+            }
+        }
+      const double m = s0 + 0.1 * u(rng) * std::pow(10., -6. * u01(rng));
+      const double r = std::pow(10., -8. * u01(rng));
+      const estep::LineTaylorForm interval =
+        estep::LineTaylorForm::about_centre_of(m - r, m + r);
+      const estep::LineTaylorForm form =
+        estep::contact::squared_intersection_length_form(
+          x0, w0, x1, w1, interval.centre, interval.radius);
+      const estep::LineEnclosure e = form.enclosure();
+      n_smooth += form.curvature.width() > 0.;
+      n_bounded += std::isfinite(e.derivative.width());
+      for (unsigned int j = 0; j <= 20; ++j)
+        {
+          const double              s = m - r + 2. * r * j / 20.;
+          estep::contact::Triangle3 T[2];
+          std::array<double, 18>    gradient;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                T[0][i][k] = x0[3 * i + k] + s * w0[3 * i + k];
+                T[1][i][k] = x1[3 * i + k] + s * w1[3 * i + k];
+              }
+          const double g =
+            estep::contact::squared_intersection_length(T[0], T[1], &gradient);
+          double slope = 0.;
+          for (unsigned int n = 0; n < 9; ++n)
+            slope += gradient[n] * w0[n] + gradient[9 + n] * w1[n];
+          ++n_samples;
+          n_positive += g > 0.;
+          if (!e.value.contains(g) || !e.derivative.contains(slope))
+            {
+              ++n_outside;
+              ADD_FAILURE()
+                << "kind " << kind << ", r = " << r
+                << ", s - m = " << s - form.centre << ": g = " << g << " in ["
+                << e.value.lower << ", " << e.value.upper << "]? g' = " << slope
+                << " in [" << e.derivative.lower << ", " << e.derivative.upper
+                << "]?";
+            }
+        }
+    }
+  std::cout << n_forms << " pair forms (" << n_smooth << " with a curvature, "
+            << n_bounded << " bounded), " << n_samples << " samples ("
+            << n_positive << " with g > 0), " << n_outside
+            << " outside their enclosures" << std::endl;
+  EXPECT_EQ(n_outside, 0u);
+  EXPECT_GT(n_positive, n_samples / 2);
+  EXPECT_GT(n_smooth, n_forms / 5);
 }
 
 TEST(ContactSystem, ObservablesOfRigidMotions)

@@ -4,6 +4,7 @@
 #include <estep/base/interval.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/contact/penalty_contact.h>
+#include <estep/systems/free_flight.h>
 
 #include <cstddef>
 #include <utility>
@@ -11,68 +12,148 @@
 
 namespace estep
 {
-  namespace contact
+  /**
+   * A second-order (Taylor) form of a function f along a free flight over the
+   * parameter interval [m - r, m + r]: the computed value and slope at the
+   * centre m, f(m) and f'(m), and intervals C and W such that for |t| <= r
+   *
+   *   f'(m + t) lies in f'(m) + C t + W (+- slope_error),
+   *   f(m + t)  lies in f(m) + f'(m) t + C t^2 / 2 + W t
+   *                     (+- value_error + slope_error |t|)
+   *
+   * for the exact f (the second line is the integral of the first). C holds
+   * f'' wherever f is twice differentiable; W (an interval containing 0)
+   * holds the jumps of f' at kinks, where f is continuous with one-sided
+   * slopes, or replaces C where no curvature bound is known (W = f'([a, b])
+   * - f'(m)). value_error and slope_error also bound the difference between
+   * the computed and the exact f and f' anywhere on the interval, so that
+   * enclosure() holds both.
+   *
+   * Forms of several terms about the same centre add up term by term: the
+   * slopes at the centre are summed before any interval is formed, so terms
+   * whose slopes cancel (near a grazing crossing of their sum) do not widen
+   * the enclosure of the sum.
+   *
+   * (Meant for FreeFlight: see doc/contact_system.md for the virtual
+   * `taylor_form(a, b)` this would become.)
+   */
+  struct LineTaylorForm
   {
-    /** Enclosures of the penalty energy and of its slope over a parameter
-     * interval of a flight. */
-    struct PenaltyEnclosure
-    {
-      /** Holds every I(q + s v), s in [a, b]. */
-      Interval value;
-      /** Holds every dI/ds(q + s v), s in [a, b]. */
-      Interval derivative;
-    };
+    double centre = 0.;
+    double radius = 0.;
+    /** f(m) and f'(m), as computed. */
+    double value = 0.;
+    double slope = 0.;
+    /** C: f'' where it exists. */
+    Interval curvature = {0., 0.};
+    /** W: the part of f'(m + t) - f'(m) not accounted for by C t. */
+    Interval slope_offset = {0., 0.};
+    /** Round-off bounds (see above). */
+    double value_error = 0.;
+    double slope_error = 0.;
+
+    /** A form of f = 0 about the centre of [a, b], with a radius that covers
+     * [a, b] despite the rounding of the centre. */
+    static LineTaylorForm
+    about_centre_of(const double a, const double b);
+
+    /** The sum of two forms about the same centre (throws std::logic_error
+     * for different centres or radii). */
+    LineTaylorForm &
+    operator+=(const LineTaylorForm &other);
+
+    /** The form of c f. */
+    LineTaylorForm
+    scaled(const double c) const;
 
     /**
-     * Rigorous enclosure of g = |A - B|^2 (see squared_intersection_length())
-     * and of dg/ds for the triangles T0, T1 whose vertices move as x + s w, s
-     * in [a, b]. @p x0, @p w0 hold T0's three vertices and velocities, @p x1,
-     * @p w1 T1's (each 9 numbers, vertex-major).
-     *
-     * Method (interval arithmetic with forward derivatives in s, every vertex
-     * an interval x + [a, b] w): the signed distances of each triangle's
-     * vertices to the other's plane, the direction d = n0 x n1 of the common
-     * line, and for each triangle the end points of its chord on that line,
-     * as coordinates u = d . X of the edge/plane crossings X = x_i + t (x_j -
-     * x_i), t = d_i / (d_i - d_j). Edges are taken as possible generators when
-     * their end distances may have opposite signs; where the sign pattern is
-     * not decided the chord ends are hulls over the possible generators (and
-     * over the edge end points when t is not bounded). Then len = min(hi_0,
-     * hi_1) - max(lo_0, lo_1) and g = max(len, 0)^2 / |d|^2, with interval
-     * min/max whose derivative is the hull of the derivatives of the
-     * candidates that can be the extremum. Pairs whose vertices all lie on
-     * one side of the other's plane give [0, 0]. Nearly parallel planes (|d|^2
-     * not bounded away from 0) give the hull [0, diameter^2] of the
-     * intersection of the two swept boxes and an unbounded slope.
-     *
-     * The result contains the exact values; it is then widened by a margin
-     * for the round-off of the floating-point evaluation of g in
-     * squared_intersection_length() (256 u L / sin(angle), L the largest
-     * coordinate, on the end points) and of its slope (relative 1e-12). Where
-     * the generators of A and B do not change on [a, b] the enclosure
-     * tightens linearly as b - a -> 0.
+     * Enclosures of f and f' over [m - r, m + r]: the exact ranges of the two
+     * quadratics f(m) + (f'(m) + W_lo/hi) t + C_lo/hi t^2 / 2 on either side of
+     * the centre, and f'(m) + C [-r, r] + W, widened by the round-off bounds.
+     * Unbounded if C or W is.
      */
-    PenaltyEnclosure
-    enclose_squared_intersection_length(const double *x0,
-                                        const double *w0,
-                                        const double *x1,
-                                        const double *w1,
-                                        const double  a,
-                                        const double  b);
+    LineEnclosure
+    enclosure() const;
+
+    /**
+     * The first-order form of a term that only offers point values and
+     * enclosures over [m - r, m + r]: C = 0, W = @p enclosure.derivative -
+     * f'(m) (unbounded if that is), value_error = @p value_error (a bound of
+     * the round-off of the term's values), slope_error = 0 (the slope
+     * enclosure holds the computed slopes already).
+     */
+    static LineTaylorForm
+    from_enclosure(const double         centre,
+                   const double         radius,
+                   const LineValue     &at_centre,
+                   const LineEnclosure &enclosure,
+                   const double         value_error);
+  };
+
+  namespace contact
+  {
+    /**
+     * The second-order form of g = |A - B|^2 (see
+     * squared_intersection_length()) for the triangles T0, T1 whose vertices
+     * move as x + s w, over [m - r, m + r]. @p x0, @p w0 hold T0's three
+     * vertices and velocities, @p x1, @p w1 T1's (each 9 numbers,
+     * vertex-major).
+     *
+     * The value and slope at m are those of squared_intersection_length() at
+     * the vertices x + m w. The rest follows from the polynomial structure of
+     * the intersection along the flight: in coordinates relative to a vertex,
+     * the face normals are quadratics and the signed vertex-plane distances D
+     * cubics in s, whose coefficients about m are computed with a rounding
+     * bound; over the interval they give enclosures of D, D' and D'' (jets).
+     * - If every vertex lies on a proven side of the other plane, the
+     *   generating edges of each triangle's chord on the common line are
+     *   known (the two edges at the vertex alone on its side; which end is
+     *   which follows from that vertex's side), and the order of the chord
+     *   ends of the two triangles along the line from the sign of the cubic
+     *   orient3d of the two generating edges. If all these are proven, g is
+     *   smooth on the interval (C^1 where the overlap starts or ends) and C
+     *   is the jet enclosure of g'' = d^2/ds^2 |X_B - X_A|^2 with the end
+     *   points X = x_i + D_i / (D_i - D_j) (x_j - x_i) (hull with 0 where the
+     *   overlap may be empty). Triangles proven on one side of a plane give
+     *   g = 0.
+     * - Otherwise (a vertex may cross the other plane, or two chord ends may
+     *   swap: g has a kink) W is the hull of 0 and of the slopes
+     *   d/ds |X_e - X_f|^2 = 2 (X_e - X_f) . (X_e' - X_f') over the pairs of
+     *   edges e, f that may generate the end points (their end distances
+     *   may have opposite signs), minus g'(m); unbounded if such an edge may
+     *   be parallel to the plane it crosses.
+     *
+     * Round-off of the computed values (stated, not proven): an end point is
+     * taken to be within 256 u (L + |e| L / |f|) / sin(phi) of the exact one
+     * (4 times the tolerance measured against exact arithmetic in
+     * doc/contact.md; L the largest coordinate, |e| the edge, |f| the shortest
+     * edge of the face, phi the angle between edge and plane), and its
+     * velocity within that error times (|w| / L + |S'| / |S|) (S = D_i - D_j,
+     * the rate at which the crossing moves); value_error and slope_error
+     * follow for g = |X_B - X_A|^2 and g'.
+     */
+    LineTaylorForm
+    squared_intersection_length_form(const double *x0,
+                                     const double *w0,
+                                     const double *x1,
+                                     const double *w1,
+                                     const double  m,
+                                     const double  r);
 
     /**
      * The penalty energy I of a PenaltyContact along one free flight q + s v,
-     * s >= 0, with the point values and slopes of PenaltyContact::Flight and,
-     * in addition, rigorous enclosures over parameter intervals (what the
-     * certified first-crossing search of energy-stepping needs).
+     * s >= 0, with point values and slopes and, in addition, second-order
+     * forms over parameter intervals (what the certified first-crossing
+     * search of energy-stepping needs).
      *
-     * Candidate pairs: for enclose(a, b), the pairs whose boxes swept over [a,
-     * b] overlap (BoundingVolumeHierarchy::build_swept(), enlarged by a
-     * round-off margin), minus excluded pairs (shared vertex, exclusion
-     * groups); every other pair is disjoint on [a, b] and contributes [0, 0].
-     * For value(s), the pairs of the last swept interval if it holds s,
-     * otherwise the pairs of the boxes at q + s v. Each candidate pair's g is
-     * enclosed by enclose_squared_intersection_length().
+     * Candidate pairs: for taylor_form(a, b), the pairs whose boxes swept over
+     * [a, b] overlap (enlarged by a round-off margin), minus excluded pairs
+     * (shared vertex, exclusion groups); every other pair is disjoint on [a,
+     * b] and contributes 0. They are filtered from the pairs of a broad phase
+     * (BoundingVolumeHierarchy::build_swept()) over a longer interval [a', a'
+     * + 4 (b' - a')], rebuilt when a query leaves it; value(s) uses the boxes
+     * at q + s v the same way. Each candidate pair contributes
+     * squared_intersection_length_form() / (2 eps).
      *
      * Copies q and v; the PenaltyContact must outlive this object. Not
      * thread-safe (cached candidates).
@@ -94,9 +175,20 @@ namespace estep
       std::pair<double, double>
       value_and_derivative(const double s) const;
 
-      /** Enclosures of I and dI/ds over [a, b], 0 <= a <= b. */
-      PenaltyEnclosure
+      /** The second-order form of I about the centre of [a, b], 0 <= a <= b.
+       */
+      LineTaylorForm
+      taylor_form(const double a, const double b) const;
+
+      /** Enclosures of I and dI/ds over [a, b]: taylor_form(a, b).enclosure().
+       */
+      LineEnclosure
       enclose(const double a, const double b) const;
+
+      /** The round-off bound of I at the start of the flight (value_error of
+       * the form at s = 0). */
+      double
+      value_tolerance() const;
 
       /** Number of pairs with a segment intersection at q + s v. */
       unsigned int
@@ -110,23 +202,27 @@ namespace estep
       }
 
     private:
-      /** Make the candidate list valid on [a, b]. */
+      /** Make the candidate list (pairs) valid on [a, b]. */
       void
       update_candidates(const double a, const double b) const;
 
       double
       evaluate(const double s, double *derivative, unsigned int *count) const;
 
-      const PenaltyContact                                      &contact;
-      std::vector<double>                                        q, v;
-      double                                                     max_q = 0.;
-      double                                                     max_v = 0.;
-      mutable BoundingVolumeHierarchy                            bvh;
-      mutable bool                                               cached = false;
-      mutable double                                             cache_a = 0.;
-      mutable double                                             cache_b = 0.;
+      const PenaltyContact           &contact;
+      std::vector<double>             q, v;
+      double                          max_q = 0.;
+      double                          max_v = 0.;
+      mutable BoundingVolumeHierarchy bvh;
+      mutable bool                    cached  = false;
+      mutable double                  cache_a = 0.;
+      mutable double                  cache_b = 0.;
+      /** The broad phase's pairs, valid on [cache_a, cache_b]. */
+      mutable std::vector<std::pair<unsigned int, unsigned int>> broad_pairs;
+      /** The candidates of the last query. */
       mutable std::vector<std::pair<unsigned int, unsigned int>> pairs;
       mutable std::vector<double>                                scratch;
+      mutable double tolerance = -1.;
     };
   } // namespace contact
 } // namespace estep

@@ -82,8 +82,13 @@ namespace estep
     void
     gradient(const Vector &q, Vector &g) const override;
 
-    /** Sum of the bodies' ElasticFreeFlight and, in penalty mode, the
-     * PenaltyFlight; enclosures are sums of enclosures. */
+    /**
+     * Sum of the bodies' ElasticFreeFlight and, in penalty mode, the
+     * PenaltyFlight. Enclosures: one second-order form of the sum about the
+     * interval's centre (values and slopes of the parts added at the centre,
+     * then the intervals; see LineTaylorForm), intersected with the sum of
+     * the parts' enclosures. value_tolerance(): the sum of the parts'.
+     */
     std::unique_ptr<FreeFlight>
     free_flight(const Vector &q, const Vector &v) const override;
 
