@@ -245,11 +245,15 @@ namespace estep
 
 
     double
-    PenaltyContact::Flight::evaluate(const double  s,
-                                     double       *derivative,
-                                     unsigned int *count) const
+    PenaltyContact::sum_along_line(
+      const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+      const double                                             *q,
+      const double                                             *v,
+      const double                                              s,
+      double                                                   *derivative,
+      unsigned int                                             *count) const
     {
-      const auto &tris  = contact->get_triangles();
+      const auto &tris  = get_triangles();
       double      total = 0., slope = 0.;
       Triangle3   T[2];
       for (const auto &[i, j] : pairs)
@@ -276,10 +280,21 @@ namespace estep
                 for (unsigned int k = 0; k < 3; ++k)
                   slope += grad[9 * m + 3 * a + k] * v[3 * (*t[m])[a] + k];
         }
-      const double scale = 1. / (2. * contact->eps);
+      const double scale = 1. / (2. * eps);
       if (derivative != nullptr)
         *derivative = slope * scale;
       return total * scale;
+    }
+
+
+
+    double
+    PenaltyContact::Flight::evaluate(const double  s,
+                                     double       *derivative,
+                                     unsigned int *count) const
+    {
+      return contact->sum_along_line(
+        pairs, q.data(), v.data(), s, derivative, count);
     }
 
 

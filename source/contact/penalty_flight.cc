@@ -812,37 +812,8 @@ namespace estep
                             unsigned int *count) const
     {
       update_candidates(s, s);
-      const auto &tris  = contact.get_triangles();
-      double      total = 0., slope = 0.;
-      Triangle3   T[2];
-      for (const auto &[i, j] : pairs)
-        {
-          const TriangleIndices *t[2] = {&tris[i], &tris[j]};
-          for (unsigned int m = 0; m < 2; ++m)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const unsigned int index = 3 * (*t[m])[a] + k;
-                  T[m][a][k]               = q[index] + s * v[index];
-                }
-          std::array<double, 18> grad;
-          const double           gap = squared_intersection_length(
-            T[0], T[1], derivative != nullptr ? &grad : nullptr);
-          if (gap == 0.)
-            continue;
-          total += gap;
-          if (count != nullptr)
-            ++*count;
-          if (derivative != nullptr)
-            for (unsigned int m = 0; m < 2; ++m)
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int k = 0; k < 3; ++k)
-                  slope += grad[9 * m + 3 * a + k] * v[3 * (*t[m])[a] + k];
-        }
-      const double scale = 1. / (2. * contact.get_eps());
-      if (derivative != nullptr)
-        *derivative = slope * scale;
-      return total * scale;
+      return contact.sum_along_line(
+        pairs, q.data(), v.data(), s, derivative, count);
     }
 
 

@@ -6,7 +6,6 @@
 #include <arkode/arkode_butcher.h>
 
 #include <cmath>
-#include <exception>
 #include <stdexcept>
 
 namespace estep
@@ -41,27 +40,21 @@ namespace estep
     right_hand_side(double, N_Vector yy, N_Vector ydot, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          internal::copy_out(yy, 0, im.q);
-          if (!std::isfinite(im.system.energy(im.q)))
-            return 1; // inadmissible (an inverted cell): recoverable
-          im.system.gradient(im.q, im.g);
-          const Vector &inverse_mass = im.system.inverse_mass();
-          const double *y_data       = internal::data(yy);
-          double       *d            = internal::data(ydot);
-          for (unsigned int i = 0; i < im.n; ++i)
-            {
-              d[i]        = y_data[im.n + i];
-              d[im.n + i] = -inverse_mass[i] * im.g[i];
-            }
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        internal::copy_out(yy, 0, im.q);
+        if (!std::isfinite(im.system.energy(im.q)))
+          return 1; // inadmissible (an inverted cell): recoverable
+        im.system.gradient(im.q, im.g);
+        const Vector &inverse_mass = im.system.inverse_mass();
+        const double *y_data       = internal::data(yy);
+        double       *d            = internal::data(ydot);
+        for (unsigned int i = 0; i < im.n; ++i)
+          {
+            d[i]        = y_data[im.n + i];
+            d[im.n + i] = -inverse_mass[i] * im.g[i];
+          }
+        return 0;
+      });
     }
 
     /** Prepare M / gamma^2 + H(q) (reusing H if ARKode allows it). */
@@ -75,29 +68,23 @@ namespace estep
           void        *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          if (jacobian_ok)
-            {
-              im.linear_solver.reshift(1. / (gamma * gamma));
-              *jacobian_current = SUNFALSE;
-            }
-          else
-            {
-              internal::copy_out(yy, 0, im.q);
-              if (!std::isfinite(im.system.energy(im.q)))
-                return 1;
-              im.linear_solver.setup(im.q, 1. / (gamma * gamma));
-              *jacobian_current = SUNTRUE;
-            }
-          im.gamma_setup = gamma;
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        if (jacobian_ok)
+          {
+            im.linear_solver.reshift(1. / (gamma * gamma));
+            *jacobian_current = SUNFALSE;
+          }
+        else
+          {
+            internal::copy_out(yy, 0, im.q);
+            if (!std::isfinite(im.system.energy(im.q)))
+              return 1;
+            im.linear_solver.setup(im.q, 1. / (gamma * gamma));
+            *jacobian_current = SUNTRUE;
+          }
+        im.gamma_setup = gamma;
+        return 0;
+      });
     }
 
     /** (dq, dv): (M / gamma^2 + H) dq = M (r_q + gamma r_v) / gamma^2,
@@ -114,28 +101,22 @@ namespace estep
           void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          const Vector &inverse_mass = im.system.inverse_mass();
-          const double  gamma        = im.gamma_setup;
-          const double *r_data       = internal::data(r);
-          double       *z_data       = internal::data(z);
-          for (unsigned int i = 0; i < im.n; ++i)
-            im.rhs[i] = (r_data[i] + gamma * r_data[im.n + i]) /
-                        (inverse_mass[i] * gamma * gamma);
-          im.linear_solver.solve(im.rhs, im.dq);
-          for (unsigned int i = 0; i < im.n; ++i)
-            {
-              z_data[i]        = im.dq[i];
-              z_data[im.n + i] = (im.dq[i] - r_data[i]) / gamma;
-            }
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return 1;
-        }
+      return internal::guarded_callback(im.callback_error, 1, [&] {
+        const Vector &inverse_mass = im.system.inverse_mass();
+        const double  gamma        = im.gamma_setup;
+        const double *r_data       = internal::data(r);
+        double       *z_data       = internal::data(z);
+        for (unsigned int i = 0; i < im.n; ++i)
+          im.rhs[i] = (r_data[i] + gamma * r_data[im.n + i]) /
+                      (inverse_mass[i] * gamma * gamma);
+        im.linear_solver.solve(im.rhs, im.dq);
+        for (unsigned int i = 0; i < im.n; ++i)
+          {
+            z_data[i]        = im.dq[i];
+            z_data[im.n + i] = (im.dq[i] - r_data[i]) / gamma;
+          }
+        return 0;
+      });
     }
 
     const MechanicalSystem   &system;

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <stdexcept>
 
 namespace estep
@@ -70,26 +69,20 @@ namespace estep
     residual(N_Vector uu, N_Vector rr, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          ++im.residual_evaluations;
-          internal::copy_out(uu, 0, im.q1);
-          if (!std::isfinite(im.body.energy(im.q1)))
-            return 1; // inadmissible: recoverable
-          im.owner->discrete_gradient(*im.q0, im.q1, im.force);
-          const Vector &inverse_mass = im.body.inverse_mass();
-          const double  h            = im.h;
-          double       *r            = internal::data(rr);
-          for (unsigned int i = 0; i < im.n; ++i)
-            r[i] = (2. / h) * (im.q1[i] - (*im.q0)[i]) - 2. * (*im.v0)[i] +
-                   h * inverse_mass[i] * im.force[i];
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        ++im.residual_evaluations;
+        internal::copy_out(uu, 0, im.q1);
+        if (!std::isfinite(im.body.energy(im.q1)))
+          return 1; // inadmissible: recoverable
+        im.owner->discrete_gradient(*im.q0, im.q1, im.force);
+        const Vector &inverse_mass = im.body.inverse_mass();
+        const double  h            = im.h;
+        double       *r            = internal::data(rr);
+        for (unsigned int i = 0; i < im.n; ++i)
+          r[i] = (2. / h) * (im.q1[i] - (*im.q0)[i]) - 2. * (*im.v0)[i] +
+                 h * inverse_mass[i] * im.force[i];
+        return 0;
+      });
     }
 
     /** Factorise 4/h^2 M + H((q0 + q1) / 2). */
@@ -97,21 +90,15 @@ namespace estep
     setup(N_Vector uu, N_Vector, N_Vector, N_Vector, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          const double *u_data = internal::data(uu);
-          for (unsigned int i = 0; i < im.n; ++i)
-            im.q_mid[i] = 0.5 * ((*im.q0)[i] + u_data[i]);
-          if (!std::isfinite(im.body.energy(im.q_mid)))
-            return 1;
-          im.linear_solver.setup(im.q_mid, 4. / (im.h * im.h));
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        const double *u_data = internal::data(uu);
+        for (unsigned int i = 0; i < im.n; ++i)
+          im.q_mid[i] = 0.5 * ((*im.q0)[i] + u_data[i]);
+        if (!std::isfinite(im.body.energy(im.q_mid)))
+          return 1;
+        im.linear_solver.setup(im.q_mid, 4. / (im.h * im.h));
+        return 0;
+      });
     }
 
     /** x = (4/h^2 M + H)^-1 (2/h) M b, in place. */
@@ -119,22 +106,16 @@ namespace estep
     solve(N_Vector, N_Vector, N_Vector, N_Vector, N_Vector vv, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          const Vector &inverse_mass = im.body.inverse_mass();
-          double       *b            = internal::data(vv);
-          for (unsigned int i = 0; i < im.n; ++i)
-            im.rhs[i] = (2. / im.h) * b[i] / inverse_mass[i];
-          im.linear_solver.solve(im.rhs, im.force);
-          for (unsigned int i = 0; i < im.n; ++i)
-            b[i] = im.force[i];
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return 1;
-        }
+      return internal::guarded_callback(im.callback_error, 1, [&] {
+        const Vector &inverse_mass = im.body.inverse_mass();
+        double       *b            = internal::data(vv);
+        for (unsigned int i = 0; i < im.n; ++i)
+          im.rhs[i] = (2. / im.h) * b[i] / inverse_mass[i];
+        im.linear_solver.solve(im.rhs, im.force);
+        for (unsigned int i = 0; i < im.n; ++i)
+          b[i] = im.force[i];
+        return 0;
+      });
     }
 
     const ElasticBody        &body;

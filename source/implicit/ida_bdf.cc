@@ -6,7 +6,6 @@
 #include <idas/idas_ls.h>
 
 #include <cmath>
-#include <exception>
 #include <stdexcept>
 
 namespace estep
@@ -42,29 +41,23 @@ namespace estep
     residual(double, N_Vector yy, N_Vector yyp, N_Vector rr, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          ++im.residual_evaluations;
-          internal::copy_out(yy, 0, im.q);
-          if (!std::isfinite(im.system.energy(im.q)))
-            return 1; // inadmissible (an inverted cell): retry a smaller step
-          im.system.gradient(im.q, im.g);
-          const Vector &inverse_mass = im.system.inverse_mass();
-          const double *y_data       = internal::data(yy),
-                       *yp_data      = internal::data(yyp);
-          double *r                  = internal::data(rr);
-          for (unsigned int i = 0; i < im.n; ++i)
-            {
-              r[i]        = yp_data[i] - y_data[im.n + i];
-              r[im.n + i] = yp_data[im.n + i] + inverse_mass[i] * im.g[i];
-            }
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        ++im.residual_evaluations;
+        internal::copy_out(yy, 0, im.q);
+        if (!std::isfinite(im.system.energy(im.q)))
+          return 1; // inadmissible (an inverted cell): retry a smaller step
+        im.system.gradient(im.q, im.g);
+        const Vector &inverse_mass = im.system.inverse_mass();
+        const double *y_data       = internal::data(yy),
+                     *yp_data      = internal::data(yyp);
+        double *r                  = internal::data(rr);
+        for (unsigned int i = 0; i < im.n; ++i)
+          {
+            r[i]        = yp_data[i] - y_data[im.n + i];
+            r[im.n + i] = yp_data[im.n + i] + inverse_mass[i] * im.g[i];
+          }
+        return 0;
+      });
     }
 
     /** Assemble and factorise c_j^2 M + H(q). */
@@ -72,20 +65,14 @@ namespace estep
     setup(double, N_Vector yy, N_Vector, N_Vector, double c_j, void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          internal::copy_out(yy, 0, im.q);
-          if (!std::isfinite(im.system.energy(im.q)))
-            return 1;
-          im.linear_solver.setup(im.q, c_j * c_j);
-          im.c_j_setup = c_j;
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return -1;
-        }
+      return internal::guarded_callback(im.callback_error, -1, [&] {
+        internal::copy_out(yy, 0, im.q);
+        if (!std::isfinite(im.system.energy(im.q)))
+          return 1;
+        im.linear_solver.setup(im.q, c_j * c_j);
+        im.c_j_setup = c_j;
+        return 0;
+      });
     }
 
     /** (dq, dv) with (c_j^2 M + H) dq = M (r_v + c_j r_q), dv = c_j dq - r_q
@@ -102,27 +89,22 @@ namespace estep
           void *data)
     {
       auto &im = *static_cast<Implementation *>(data);
-      try
-        {
-          const Vector &inverse_mass = im.system.inverse_mass();
-          const double  c            = im.c_j_setup;
-          const double *r_data       = internal::data(r);
-          double       *z_data       = internal::data(z);
-          for (unsigned int i = 0; i < im.n; ++i)
-            im.rhs[i] = (r_data[im.n + i] + c * r_data[i]) / inverse_mass[i];
-          im.linear_solver.solve(im.rhs, im.dq);
-          for (unsigned int i = 0; i < im.n; ++i)
-            {
-              z_data[i]        = im.dq[i];
-              z_data[im.n + i] = c * im.dq[i] - r_data[i];
-            }
-          return 0;
-        }
-      catch (const std::exception &e)
-        {
-          im.callback_error = e.what();
-          return 1; // recoverable: IDA may retry with a fresh setup
-        }
+      // A failure is recoverable: IDA may retry with a fresh setup.
+      return internal::guarded_callback(im.callback_error, 1, [&] {
+        const Vector &inverse_mass = im.system.inverse_mass();
+        const double  c            = im.c_j_setup;
+        const double *r_data       = internal::data(r);
+        double       *z_data       = internal::data(z);
+        for (unsigned int i = 0; i < im.n; ++i)
+          im.rhs[i] = (r_data[im.n + i] + c * r_data[i]) / inverse_mass[i];
+        im.linear_solver.solve(im.rhs, im.dq);
+        for (unsigned int i = 0; i < im.n; ++i)
+          {
+            z_data[i]        = im.dq[i];
+            z_data[im.n + i] = c * im.dq[i] - r_data[i];
+          }
+        return 0;
+      });
     }
 
     const MechanicalSystem   &system;

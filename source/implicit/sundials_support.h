@@ -11,6 +11,7 @@
 #include <sundials/sundials_iterative.h>
 #include <sundials/sundials_linearsolver.h>
 
+#include <exception>
 #include <string>
 
 namespace estep
@@ -55,6 +56,29 @@ namespace estep
                         const char *function,
                         char       *message,
                         void       *string);
+
+    /**
+     * Run the body of a SUNDIALS callback, which returns a SUNDIALS status:
+     * an exception must not cross the C code, so it becomes @p
+     * failure_status and its message is kept in @p message (the integrator
+     * reports it when the step fails).
+     */
+    template <typename Body>
+    int
+    guarded_callback(std::string &message,
+                     const int    failure_status,
+                     Body       &&body)
+    {
+      try
+        {
+          return body();
+        }
+      catch (const std::exception &e)
+        {
+          message = e.what();
+          return failure_status;
+        }
+    }
 
     /** Pointer to the data of a serial N_Vector. */
     inline double *

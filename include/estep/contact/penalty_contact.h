@@ -161,6 +161,20 @@ namespace estep
         std::vector<std::pair<unsigned int, unsigned int>> pairs;
       };
 
+      /**
+       * I(q + s v) summed over the candidate @p pairs only; dI/ds into
+       * @p derivative and the number of intersecting pairs into @p count
+       * (both optional). Shared by the flights of the penalty term.
+       */
+      double
+      sum_along_line(
+        const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+        const double                                             *q,
+        const double                                             *v,
+        const double                                              s,
+        double                                                   *derivative,
+        unsigned int                                             *count) const;
+
       /** Prepare evaluations along q + s v, 0 <= s <= s_max (s_max >= 0,
        * finite). */
       Flight
