@@ -521,22 +521,14 @@ namespace estep
         return error;
       }
 
-      /** Largest |X| over the jet's values, and largest |X'|. */
+      /** Largest |X| over the jet's values (@p part = &Jet::v) or largest
+       * |X'| (&Jet::d). */
       double
-      max_value(const Jet3 &X)
+      max_norm(const Jet3 &X, Interval Jet::*part)
       {
         double s = 0.;
         for (const Jet &c : X)
-          s += magnitude(c.v) * magnitude(c.v);
-        return std::sqrt(s);
-      }
-
-      double
-      max_rate(const Jet3 &X)
-      {
-        double s = 0.;
-        for (const Jet &c : X)
-          s += magnitude(c.d) * magnitude(c.d);
+          s += magnitude(c.*part) * magnitude(c.*part);
         return std::sqrt(s);
       }
 
@@ -660,8 +652,8 @@ namespace estep
                   const CrossingError eA = crossing_error(g, A, SA, L, w_max);
                   const CrossingError eB = crossing_error(g, B, SB, L, w_max);
                   set_errors(form,
-                             max_value(delta),
-                             max_rate(delta),
+                             max_norm(delta, &Jet::v),
+                             max_norm(delta, &Jet::d),
                              std::max(eA.position, eB.position),
                              std::max(eA.velocity, eB.velocity));
                   return form;
@@ -710,8 +702,8 @@ namespace estep
                 s        = s + 2. * times(delta[c].v, delta[c].d);
               }
             slopes = hull(slopes, s);
-            length = std::max(length, max_value(delta));
-            rate   = std::max(rate, max_rate(delta));
+            length = std::max(length, max_norm(delta, &Jet::v));
+            rate   = std::max(rate, max_norm(delta, &Jet::d));
           }
       form.slope_offset = slopes - Interval::point(form.slope);
       set_errors(form, length, rate, position_error, velocity_error);
