@@ -302,11 +302,11 @@ namespace estep
       {
         const unsigned int e  = begin + i;
         const double       k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
-        const double       Jm = k0 + m * (k1 + m * (k2 + m * k3));
+        const double       Jm = cubic(k0, k1, k2, k3, m);
         const double       D1 = k1 + m * (2. * k2 + 3. * m * k3);
         const double       D2 = k2 + 3. * m * k3;
         const double a1 = std::abs(k1), a2 = std::abs(k2), a3 = std::abs(k3);
-        const double scale0 = std::abs(k0) + S * (a1 + S * (a2 + S * a3));
+        const double scale0 = cubic_scale(k0, k1, k2, k3, S);
         const double scale1 = a1 + S * (2. * a2 + 3. * S * a3);
         const double scale2 = 2. * a2 + 6. * S * a3;
 
