@@ -11,12 +11,14 @@
 #include <estep/contact/ccd_command.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/implicit/create_implicit_integrator.h>
+#include <estep/io/contact_monitor.h>
 #include <estep/io/field_output.h>
 #include <estep/io/history_writer.h>
 #include <estep/io/json_writer.h>
 #include <estep/io/progress_line.h>
 #include <estep/io/step_histogram.h>
 #include <estep/io/trajectory_norm.h>
+#include <estep/systems/contact_system.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/explicit_newmark.h>
 #include <estep/time_integration/time_loop.h>
@@ -294,6 +296,13 @@ namespace estep
                                           parameters.field_output_interval);
           observers.push_back(fields.get());
         }
+      std::unique_ptr<ContactMonitor> contact;
+      if (const auto *contact_system =
+            dynamic_cast<const ContactSystem *>(&system))
+        {
+          contact = std::make_unique<ContactMonitor>(*contact_system);
+          observers.push_back(contact.get());
+        }
       std::unique_ptr<ProgressLine> progress;
       if (parameters.progress == "on" ||
           (parameters.progress == "auto" && ProgressLine::stderr_is_terminal()))
@@ -376,6 +385,8 @@ namespace estep
         .add("angular momentum drift", angular_drift);
       if (parameters.h1_norm)
         summary.add("h1 norm", norm.h1_norm());
+      if (contact)
+        summary.add("contact", contact->summary(problem.q0, problem.v0, q, v));
       histogram.write((directory / "step_histogram.csv").string());
       write_file_atomically((directory / "summary.json").string(),
                             summary.to_string() + "\n");
@@ -385,6 +396,9 @@ namespace estep
                 << " at t = " << result.final_time << " after "
                 << integrator->n_steps() << " steps in " << result.wall_seconds
                 << " s; output in " << directory.string() << "/\n";
+      if (contact)
+        std::cout << "estep: " << contact->report(problem.q0, problem.v0, q, v)
+                  << '\n';
       if (result.status == RunStatus::unstable)
         {
           std::cerr << "estep: " << result.message << '\n';

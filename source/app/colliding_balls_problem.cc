@@ -8,6 +8,7 @@
 #include <estep/systems/contact_parameters.h>
 #include <estep/systems/contact_system.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace estep
@@ -107,12 +108,26 @@ namespace estep
           bodies.push_back(body);
         }
 
+      // Hertz's estimate of the contact duration of two equal elastic spheres
+      // meeting head-on at relative speed v0 (method.md 5.3, as the seed
+      // writes it).
+      const double E  = mu * (3. * lambda + 2. * mu) / (lambda + mu);
+      const double nu = lambda / (2. * (lambda + mu));
+      const double hertz =
+        4.53 *
+        std::pow((1. - nu * nu) / E * 4. / 3. * R * R * R * density, 0.4) *
+        std::pow(2. / (speed * R), 0.2);
+
       Problem problem;
       problem.description.add("balls", 2u)
         .add("cells per ball", bodies[0]->n_cells())
         .add("vertices per ball", bodies[0]->n_vertices())
         .add("mass per ball", bodies[0]->mass())
+        .add("Young's modulus", E)
+        .add("Poisson's ratio", nu)
         .add("contact", ContactParameters::mode_name(contact.mode));
+      if (speed > 0.)
+        problem.description.add("Hertz contact duration estimate", hertz);
       auto system =
         std::make_unique<ContactSystem>(bodies, contact, "colliding balls");
       problem.q0     = system->concatenate(q);

@@ -1,6 +1,8 @@
 #include <estep/io/history_writer.h>
 
+#include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <stdexcept>
 
 namespace estep
@@ -10,6 +12,8 @@ namespace estep
     : integrator(integrator)
     , start_time(integrator.time())
     , out(filename)
+    , smallest_step_since_row(std::numeric_limits<double>::infinity())
+    , largest_step_since_row(0.)
   {
     if (!out)
       throw std::runtime_error("Cannot open the history file <" + filename +
@@ -18,7 +22,7 @@ namespace estep
            "total_energy,terraced_total_energy,"
            "linear_momentum_x,linear_momentum_y,linear_momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,"
-           "steps,mean_step";
+           "steps,mean_step,min_step,max_step";
     for (const std::string &name :
          integrator.mechanical_system().observable_names())
       out << ',' << name;
@@ -46,9 +50,28 @@ namespace estep
       out << (integrator.time() - start_time) / static_cast<double>(steps);
     else
       out << 0;
+    if (smallest_step_since_row > largest_step_since_row)
+      {
+        const double step = integrator.time() - integrator.previous_time();
+        out << ',' << step << ',' << step;
+      }
+    else
+      out << ',' << smallest_step_since_row << ',' << largest_step_since_row;
+    smallest_step_since_row = std::numeric_limits<double>::infinity();
+    largest_step_since_row  = 0.;
     for (const double x : system.observables(s.q, s.v))
       out << ',' << x;
     out << '\n';
     out.flush();
+  }
+
+
+
+  void
+  HistoryWriter::after_step(const TimeIntegrator &stepper)
+  {
+    const double step       = stepper.time() - stepper.previous_time();
+    smallest_step_since_row = std::min(smallest_step_since_row, step);
+    largest_step_since_row  = std::max(largest_step_since_row, step);
   }
 } // namespace estep

@@ -12,8 +12,10 @@ namespace estep
    * Writes history.csv: one row per output time with the time, the energies
    * (kinetic, potential, terraced potential, total T + V and terraced total T +
    * L h), the linear and angular momentum about the origin, the step statistics
-   * so far, and the system's own observables. Rows are flushed as they are
-   * written, so a run that stops early leaves a valid file.
+   * so far, the smallest and largest step since the previous row (the steps
+   * ending after it up to the first one reaching the row's time; the step in
+   * progress if none ended), and the system's own observables. Rows are flushed
+   * as they are written, so a run that stops early leaves a valid file.
    */
   class HistoryWriter : public RunObserver
   {
@@ -26,10 +28,15 @@ namespace estep
     void
     observe(const Snapshot &snapshot) override;
 
+    void
+    after_step(const TimeIntegrator &integrator) override;
+
   private:
     const TimeIntegrator &integrator;
     const double          start_time;
     std::ofstream         out;
+    /** Extreme steps since the last row; min > max when none ended since. */
+    double smallest_step_since_row, largest_step_since_row;
   };
 } // namespace estep
 

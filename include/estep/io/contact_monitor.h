@@ -1,0 +1,96 @@
+#ifndef estep_io_contact_monitor_h
+#define estep_io_contact_monitor_h
+
+#include <estep/io/json_writer.h>
+#include <estep/time_integration/time_loop.h>
+
+#include <cstdint>
+#include <string>
+
+namespace estep
+{
+  class ContactSystem;
+
+  /**
+   * Watches the contact of a ContactSystem at every step of a run and reports
+   * what a collision experiment measures:
+   * - the largest number of intersecting pairs of boundary faces at any step
+   *   end (the exact test of ContactSystem::n_intersecting_pairs());
+   * - when the bodies are in contact: a step end is a contact instant if faces
+   *   intersect there (penalty contact) or if the step ended in a constraint
+   *   event (exact impenetrability). The contact duration is the time from
+   *   the first to the last contact instant; its resolution is the longer of
+   *   the step that reached the first instant and the step that followed the
+   *   last one;
+   * - the coefficient of restitution from the centre-of-mass kinetic energies
+   *   (see restitution()).
+   */
+  class ContactMonitor : public RunObserver
+  {
+  public:
+    explicit ContactMonitor(const ContactSystem &system);
+
+    void
+    after_step(const TimeIntegrator &integrator) override;
+
+    /**
+     * The coefficient of restitution e of a collision from the state (q0, v0)
+     * before and (q1, v1) after it: e^2 = T_rel(1) / T_rel(0), with T_rel the
+     * kinetic energy of the bodies' centre-of-mass velocities relative to the
+     * system's centre of mass. For two equal bodies, one of them at rest, this
+     * is the seed's T_f / T_0 = (1 + e^2) / 2 with T the centre-of-mass
+     * kinetic energies. NaN if the bodies do not move relative to each other
+     * at the start.
+     */
+    double
+    restitution(const Vector &q0,
+                const Vector &v0,
+                const Vector &q1,
+                const Vector &v1) const;
+
+    /**
+     * The summary of the run: the counts and times above, the restitution
+     * between (q0, v0) and (q1, v1) and the final rigid motion of every body
+     * and of the system.
+     */
+    JsonObject
+    summary(const Vector &q0,
+            const Vector &v0,
+            const Vector &q1,
+            const Vector &v1) const;
+
+    /** One line for the terminal with the contact duration, the restitution
+     * and the largest count of intersecting pairs. */
+    std::string
+    report(const Vector &q0,
+           const Vector &v0,
+           const Vector &q1,
+           const Vector &v1) const;
+
+    /** The largest number of intersecting face pairs seen at a step end. */
+    unsigned int
+    max_intersecting_pairs() const
+    {
+      return largest_pair_count;
+    }
+
+    /** Time from the first to the last contact instant (0 without contact). */
+    double
+    contact_duration() const;
+
+  private:
+    const ContactSystem &system;
+    unsigned int         largest_pair_count     = 0;
+    std::uint64_t        steps_with_pairs       = 0;
+    std::uint64_t        constraint_events_seen = 0;
+    /** Whether the previous step end was a contact instant. */
+    bool          in_contact         = false;
+    std::uint64_t n_contact_instants = 0;
+    double        first_contact      = 0.;
+    double        last_contact     = 0.;
+    double        step_before_first_contact = 0.;
+    double        step_after_last_contact   = 0.;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,156 @@
+#include <estep/io/contact_monitor.h>
+#include <estep/systems/contact_system.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace estep
+{
+  namespace
+  {
+    /** The integrator's count of constraint events (0 if it has none). */
+    std::uint64_t
+    constraint_events(const TimeIntegrator &integrator)
+    {
+      for (const Counter &counter : integrator.counters())
+        if (counter.first == "constraint events")
+          return counter.second;
+      return 0;
+    }
+
+    JsonObject
+    motion_json(const RigidBodyMotion &motion)
+    {
+      return JsonObject()
+        .add("V", std::vector<double>(motion.velocity.begin(),
+                                      motion.velocity.end()))
+        .add("Omega",
+             std::vector<double>(motion.angular.begin(), motion.angular.end()));
+    }
+  } // namespace
+
+
+
+  ContactMonitor::ContactMonitor(const ContactSystem &system)
+    : system(system)
+  {}
+
+
+
+  void
+  ContactMonitor::after_step(const TimeIntegrator &integrator)
+  {
+    const unsigned int pairs = system.n_intersecting_pairs(integrator.position());
+    const std::uint64_t events = constraint_events(integrator);
+    const bool contact = pairs > 0 || events > constraint_events_seen;
+    constraint_events_seen = events;
+    largest_pair_count     = std::max(largest_pair_count, pairs);
+    steps_with_pairs += (pairs > 0);
+
+    const double t = integrator.time(), step = t - integrator.previous_time();
+    if (contact)
+      {
+        if (n_contact_instants == 0)
+          {
+            first_contact             = t;
+            step_before_first_contact = step;
+          }
+        ++n_contact_instants;
+        last_contact            = t;
+        step_after_last_contact = 0.;
+      }
+    else if (in_contact)
+      step_after_last_contact = step;
+    in_contact = contact;
+  }
+
+
+
+  double
+  ContactMonitor::contact_duration() const
+  {
+    return last_contact - first_contact;
+  }
+
+
+
+  double
+  ContactMonitor::restitution(const Vector &q0,
+                              const Vector &v0,
+                              const Vector &q1,
+                              const Vector &v1) const
+  {
+    const auto relative_kinetic_energy = [this](const Vector &q,
+                                                const Vector &v) {
+      const RigidBodyMotion whole = system.system_motion(q, v);
+      double                energy = 0.;
+      for (unsigned int b = 0; b < system.n_bodies(); ++b)
+        {
+          const RigidBodyMotion body = system.body_motion(q, v, b);
+          for (unsigned int c = 0; c < 3; ++c)
+            energy += 0.5 * body.mass *
+                      std::pow(body.velocity[c] - whole.velocity[c], 2);
+        }
+      return energy;
+    };
+    const double before = relative_kinetic_energy(q0, v0);
+    if (!(before > 0.))
+      return std::numeric_limits<double>::quiet_NaN();
+    return std::sqrt(relative_kinetic_energy(q1, v1) / before);
+  }
+
+
+
+  JsonObject
+  ContactMonitor::summary(const Vector &q0,
+                          const Vector &v0,
+                          const Vector &q1,
+                          const Vector &v1) const
+  {
+    JsonObject result;
+    result.add("largest number of intersecting face pairs", largest_pair_count)
+      .add("steps ending with intersecting face pairs", steps_with_pairs)
+      .add("contact instants", n_contact_instants);
+    if (n_contact_instants > 0)
+      result.add("first contact instant", first_contact)
+        .add("last contact instant", last_contact)
+        .add("contact duration", contact_duration())
+        .add("contact duration resolution",
+             std::max(step_before_first_contact, step_after_last_contact));
+    const double e = restitution(q0, v0, q1, v1);
+    if (std::isfinite(e))
+      result.add("coefficient of restitution", e);
+    JsonObject final_motion;
+    for (unsigned int b = 0; b < system.n_bodies(); ++b)
+      final_motion.add("body " + std::to_string(b + 1),
+                       motion_json(system.body_motion(q1, v1, b)));
+    final_motion.add("system", motion_json(system.system_motion(q1, v1)));
+    result.add("final rigid motion", final_motion);
+    return result;
+  }
+
+
+
+  std::string
+  ContactMonitor::report(const Vector &q0,
+                         const Vector &v0,
+                         const Vector &q1,
+                         const Vector &v1) const
+  {
+    std::ostringstream out;
+    out.precision(4);
+    if (n_contact_instants == 0)
+      out << "no contact";
+    else
+      out << "contact from t = " << first_contact << " to " << last_contact
+          << " (duration " << contact_duration() << ", " << n_contact_instants
+          << " step ends in contact)";
+    const double e = restitution(q0, v0, q1, v1);
+    if (std::isfinite(e))
+      out << ", coefficient of restitution " << e;
+    out << ", at most " << largest_pair_count
+        << " intersecting face pairs at a step end";
+    return out.str();
+  }
+} // namespace estep

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The seed's colliding balls through the application, to t = 0.5 as in the seed: the penalty
+# run (parameter_files/ball_collision.prm) and the exact-impenetrability run, then
+# scripts/ball_collision_figures.py on their output.
+# Checked from summary.json and history.csv: both runs complete and conserve the terraced
+# energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
+# intersecting faces during contact, the impenetrable run none at any step end; both report a
+# coefficient of restitution in [0.8, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
+# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact.
+# Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
+set -u
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+
+fail() {
+  echo "FAILED: $*"
+  failures=$((failures + 1))
+}
+
+# check RUN LARGEST_PAIRS_RULE: the summary and history of output/RUN meet the rules above;
+# LARGEST_PAIRS_RULE is "positive" or "zero".
+check() {
+  /usr/bin/python3 - "output/$1" "$2" <<'PY' || fail "$1: see above"
+import csv, json, sys
+directory, pairs_rule = sys.argv[1], sys.argv[2]
+s = json.load(open(f"{directory}/summary.json"))
+bad = []
+def expect(condition, message):
+    if not condition:
+        bad.append(message)
+
+expect(s["status"] == "completed", f"status {s['status']}")
+expect(s["energies"]["terraced energy drift"] < 1e-10,
+       f"terraced energy drift {s['energies']['terraced energy drift']}")
+p0 = max(abs(x) for x in s["initial momenta"]["linear"])
+l0 = max(abs(x) for x in s["initial momenta"]["angular"])
+expect(s["linear momentum drift"] < 1e-10 * p0, f"linear momentum drift {s['linear momentum drift']} of {p0}")
+expect(s["angular momentum drift"] < 1e-10 * l0, f"angular momentum drift {s['angular momentum drift']} of {l0}")
+c = s["contact"]
+pairs = c["largest number of intersecting face pairs"]
+expect(pairs > 0 if pairs_rule == "positive" else pairs == 0, f"largest number of intersecting pairs {pairs}")
+expect(0.8 <= c["coefficient of restitution"] <= 1., f"restitution {c['coefficient of restitution']}")
+expect(0.03 <= c["contact duration"] <= 0.07, f"contact duration {c['contact duration']}")
+expect(c["contact duration resolution"] < 2e-3, f"contact duration resolution {c['contact duration resolution']}")
+hertz = s["problem"]["Hertz contact duration estimate"]
+expect(abs(hertz - 0.0694) < 5e-5, f"Hertz estimate {hertz}")
+rows = list(csv.DictReader(open(f"{directory}/history.csv")))
+during = [float(r["min_step"]) for r in rows if c["first contact instant"] <= float(r["time"]) <= c["last contact instant"]]
+expect(during and min(during) < 1e-5, "no step below 1e-5 during contact")
+expect(all(float(r["min_step"]) <= float(r["max_step"]) for r in rows), "min_step above max_step")
+for message in bad:
+    print(f"{directory}: {message}")
+sys.exit(1 if bad else 0)
+PY
+}
+
+for run in ball_collision ball_collision_impenetrable; do
+  "$ESTEP" "$ESTEP_SOURCE_DIR/parameter_files/$run.prm" > "$run.log" 2>&1 || fail "$run exited with $?: $(cat "$run.log")"
+  grep -q "coefficient of restitution" "$run.log" || fail "$run: no contact report on standard output"
+done
+check ball_collision positive
+check ball_collision_impenetrable zero
+
+"$ESTEP_SOURCE_DIR/scripts/ball_collision_figures.py" --output output > figures.log 2>&1 || fail "the figure script failed: $(cat figures.log)"
+for file in figure_2_16.png figure_2_17.png ball_collision_table.md; do
+  [[ -s output/$file ]] || fail "the figure script did not write $file"
+done
+grep -q "ball_collision_newmark: no history.csv" figures.log || fail "the missing Newmark run is not reported"
+grep -q "Hertz estimate 0.0694" output/ball_collision_table.md || fail "the table lacks the Hertz estimate"
+
+echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
+[[ $failures == 0 ]]
