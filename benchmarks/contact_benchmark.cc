@@ -1,6 +1,7 @@
 // Performance of the contact area: triangle-triangle tests per second, broad
-// phase of two touching spheres of 1e5 boundary triangles each, CCD time per
-// query.
+// phase of two touching spheres of 1e5 boundary triangles each (self query over
+// both, and body versus body), CCD time per query (all sample queries and the
+// non-degenerate ones).
 //
 // Run: benchmark_contact_benchmark [--benchmark_filter=...]. The CCD benchmarks
 // read the sample queries from ESTEP_CCD_QUERY_DIR (environment) or
@@ -72,14 +73,17 @@ namespace
 
   struct TwoSpheres
   {
-    std::vector<double>          q;
-    std::vector<TriangleIndices> triangles;
+    std::vector<double> q;
+    // All triangles (both spheres), and each sphere's, all indexing q.
+    std::vector<TriangleIndices> triangles, first, second;
     TwoSpheres()
     {
       // 2 * 224 * 223 = 99,904 triangles per sphere; the spheres touch (overlap
       // 1e-3 R).
-      estep_test::add_sphere(q, triangles, 0., 0., 0., 1., 224, 224);
-      estep_test::add_sphere(q, triangles, 1.999, 0.01, 0.02, 1., 224, 224);
+      estep_test::add_sphere(q, first, 0., 0., 0., 1., 224, 224);
+      estep_test::add_sphere(q, second, 1.999, 0.01, 0.02, 1., 224, 224);
+      triangles = first;
+      triangles.insert(triangles.end(), second.begin(), second.end());
     }
   };
 
@@ -90,8 +94,10 @@ namespace
     return s;
   }
 
+  // Self case: one hierarchy over both spheres, all non-adjacent pairs (most
+  // of them between neighbours on the same sphere).
   void
-  BM_BroadPhaseBuildAndQuery(benchmark::State &state)
+  BM_BroadPhaseSelfBuildAndQuery(benchmark::State &state)
   {
     const TwoSpheres                                  &s = two_spheres();
     BoundingVolumeHierarchy                            bvh(s.triangles);
@@ -104,10 +110,10 @@ namespace
     state.counters["triangles"]       = s.triangles.size();
     state.counters["candidate_pairs"] = pairs.size();
   }
-  BENCHMARK(BM_BroadPhaseBuildAndQuery)->Unit(benchmark::kMillisecond);
+  BENCHMARK(BM_BroadPhaseSelfBuildAndQuery)->Unit(benchmark::kMillisecond);
 
   void
-  BM_BroadPhaseRefitAndQuery(benchmark::State &state)
+  BM_BroadPhaseSelfRefitAndQuery(benchmark::State &state)
   {
     const TwoSpheres                                  &s = two_spheres();
     BoundingVolumeHierarchy                            bvh(s.triangles);
@@ -120,7 +126,44 @@ namespace
       }
     state.counters["candidate_pairs"] = pairs.size();
   }
-  BENCHMARK(BM_BroadPhaseRefitAndQuery)->Unit(benchmark::kMillisecond);
+  BENCHMARK(BM_BroadPhaseSelfRefitAndQuery)->Unit(benchmark::kMillisecond);
+
+  // Body versus body: one hierarchy per sphere, the pairs between them (what
+  // contact between two bodies needs).
+  void
+  BM_BroadPhaseBodiesBuildAndQuery(benchmark::State &state)
+  {
+    const TwoSpheres       &s = two_spheres();
+    BoundingVolumeHierarchy first(s.first), second(s.second);
+    std::vector<std::pair<unsigned int, unsigned int>> pairs;
+    for (auto _ : state)
+      {
+        first.build(s.q.data(), s.q.size());
+        second.build(s.q.data(), s.q.size());
+        first.find_pairs(second, pairs);
+      }
+    state.counters["triangles"]       = s.triangles.size();
+    state.counters["candidate_pairs"] = pairs.size();
+  }
+  BENCHMARK(BM_BroadPhaseBodiesBuildAndQuery)->Unit(benchmark::kMillisecond);
+
+  void
+  BM_BroadPhaseBodiesRefitAndQuery(benchmark::State &state)
+  {
+    const TwoSpheres       &s = two_spheres();
+    BoundingVolumeHierarchy first(s.first), second(s.second);
+    std::vector<std::pair<unsigned int, unsigned int>> pairs;
+    first.build(s.q.data(), s.q.size());
+    second.build(s.q.data(), s.q.size());
+    for (auto _ : state)
+      {
+        first.refit(s.q.data(), s.q.size());
+        second.refit(s.q.data(), s.q.size());
+        first.find_pairs(second, pairs);
+      }
+    state.counters["candidate_pairs"] = pairs.size();
+  }
+  BENCHMARK(BM_BroadPhaseBodiesRefitAndQuery)->Unit(benchmark::kMillisecond);
 
   void
   BM_PenaltyEnergyTwoSpheres(benchmark::State &state)
@@ -184,6 +227,23 @@ namespace
     run_ccd(state, queries);
   }
   BENCHMARK(BM_CcdSampleQueriesAll)->Unit(benchmark::kMicrosecond)->MinTime(2.);
+
+  // The sample queries that ccd_query_is_non_degenerate() accepts.
+  void
+  BM_CcdSampleQueriesNonDegenerate(benchmark::State &state)
+  {
+    static const auto queries = [] {
+      std::vector<CcdQuery> generic;
+      for (const CcdQuery &q : sample_queries(""))
+        if (ccd_query_is_non_degenerate(q.start, q.end))
+          generic.push_back(q);
+      return generic;
+    }();
+    run_ccd(state, queries);
+  }
+  BENCHMARK(BM_CcdSampleQueriesNonDegenerate)
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(2.);
 
   // The scenes with no deliberately degenerate motion (sliding and crack
   // scenes).

@@ -1,6 +1,7 @@
 // Broad phase: the hierarchy finds exactly the overlapping, non-adjacent pairs
-// (static, refitted and swept), and the deal.II adapter extracts a closed,
-// outward-oriented surface.
+// within one surface and between two surfaces (static, refitted, with margin
+// and swept), also on structured meshes and degenerate inputs, and the deal.II
+// adapter extracts a closed, outward-oriented surface.
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
@@ -32,6 +33,22 @@ namespace
       for (unsigned int j = i + 1; j < t.size(); ++j)
         if (bvh.triangle_box(i).overlaps(bvh.triangle_box(j)) &&
             !share_vertex(t[i], t[j]))
+          pairs.emplace_back(i, j);
+    return pairs;
+  }
+
+  /** Brute force between two hierarchies: (i of a, j of b). */
+  Pairs
+  brute_force(const BoundingVolumeHierarchy &a,
+              const BoundingVolumeHierarchy &b,
+              const SharedVertices           shared)
+  {
+    Pairs       pairs;
+    const auto &s = a.get_triangles(), &t = b.get_triangles();
+    for (unsigned int i = 0; i < s.size(); ++i)
+      for (unsigned int j = 0; j < t.size(); ++j)
+        if (a.triangle_box(i).overlaps(b.triangle_box(j)) &&
+            !(shared == SharedVertices::excluded && share_vertex(s[i], t[j])))
           pairs.emplace_back(i, j);
     return pairs;
   }
@@ -137,6 +154,185 @@ TEST(BroadPhase, SweptBoxesHoldEveryIntersectionOfTheFlight)
             }
     }
   EXPECT_GT(n_intersections, 10u);
+}
+
+/** Two soups in one coordinate vector; some triangles of the second body
+ * share a vertex with the first (as if glued), to test the exclusion. */
+struct TwoBodies
+{
+  std::vector<double>          q;
+  std::vector<TriangleIndices> first, second;
+  explicit TwoBodies(std::mt19937_64 &rng)
+  {
+    soup(rng, q, first);
+    const unsigned int  offset = q.size() / 3;
+    std::vector<double> q2;
+    soup(rng, q2, second);
+    for (TriangleIndices &t : second)
+      for (unsigned int &i : t)
+        i += offset;
+    // Shift the second body by half its size: the bodies overlap in part.
+    for (std::size_t i = 0; i < q2.size(); ++i)
+      q.push_back(q2[i] + (i % 3 == 0 ? 0.5 : 0.));
+    for (unsigned int i = 0; i < std::min(first.size(), second.size()); i += 10)
+      second[i][2] = first[i][0];
+  }
+};
+
+TEST(BroadPhase, BodyVersusBodyFindsExactlyTheOverlappingPairs)
+{
+  std::mt19937_64         rng(43);
+  TwoBodies               bodies(rng);
+  auto                   &q = bodies.q;
+  BoundingVolumeHierarchy a(bodies.first), b(bodies.second);
+  a.build(q.data(), q.size());
+  b.build(q.data(), q.size());
+  Pairs found;
+  a.find_pairs(b, found);
+  EXPECT_GT(found.size(), 50u);
+  EXPECT_EQ(sorted(found), sorted(brute_force(a, b, SharedVertices::excluded)));
+  // The glued triangles' boxes overlap (shared vertex), so including them adds
+  // pairs.
+  Pairs with_shared;
+  a.find_pairs(b, with_shared, SharedVertices::included);
+  EXPECT_GT(with_shared.size(), found.size());
+  EXPECT_EQ(sorted(with_shared),
+            sorted(brute_force(a, b, SharedVertices::included)));
+  // The other order gives the same pairs, swapped.
+  Pairs reversed;
+  b.find_pairs(a, reversed);
+  for (auto &[i, j] : reversed)
+    std::swap(i, j);
+  EXPECT_EQ(sorted(reversed), sorted(found));
+
+  // Refitted after a motion, and with a margin.
+  std::normal_distribution<double> d(0., 0.05);
+  for (double &x : q)
+    x += d(rng);
+  a.refit(q.data(), q.size());
+  b.refit(q.data(), q.size());
+  a.find_pairs(b, found);
+  EXPECT_EQ(sorted(found), sorted(brute_force(a, b, SharedVertices::excluded)));
+  a.refit(q.data(), q.size(), 0.02);
+  b.refit(q.data(), q.size(), 0.02);
+  Pairs with_margin;
+  a.find_pairs(b, with_margin);
+  EXPECT_GT(with_margin.size(), found.size());
+  EXPECT_EQ(sorted(with_margin),
+            sorted(brute_force(a, b, SharedVertices::excluded)));
+
+  // Swept boxes of a free flight (rebuilt and refitted).
+  std::vector<double> v(q.size());
+  for (double &x : v)
+    x = 3. * d(rng);
+  for (const bool rebuild : {true, false})
+    {
+      if (rebuild)
+        {
+          a.build_swept(q.data(), v.data(), q.size(), 0.5);
+          b.build_swept(q.data(), v.data(), q.size(), 0.5);
+        }
+      else
+        {
+          a.refit_swept(q.data(), v.data(), q.size(), 0.7, 0.01);
+          b.refit_swept(q.data(), v.data(), q.size(), 0.7, 0.01);
+        }
+      Pairs swept;
+      a.find_pairs(b, swept);
+      EXPECT_GT(swept.size(), with_margin.size());
+      EXPECT_EQ(sorted(swept),
+                sorted(brute_force(a, b, SharedVertices::excluded)));
+    }
+}
+
+TEST(BroadPhase, BodyVersusBodyWithSeparateCoordinateVectors)
+{
+  // Each body indexes its own coordinates from 0: equal indices mean nothing,
+  // so shared vertices must be included to find every overlapping pair.
+  std::mt19937_64              rng(44);
+  std::vector<double>          q1, q2;
+  std::vector<TriangleIndices> t1, t2;
+  soup(rng, q1, t1);
+  soup(rng, q2, t2);
+  BoundingVolumeHierarchy a(t1), b(t2);
+  a.build(q1.data(), q1.size());
+  b.build(q2.data(), q2.size());
+  Pairs found;
+  a.find_pairs(b, found, SharedVertices::included);
+  EXPECT_GT(found.size(), 100u);
+  EXPECT_EQ(sorted(found), sorted(brute_force(a, b, SharedVertices::included)));
+  EXPECT_GT(found.size(), brute_force(a, b, SharedVertices::excluded).size());
+}
+
+TEST(BroadPhase, TouchingSpheres)
+{
+  // Structured surfaces (the benchmark's configuration, coarser): the self
+  // query and the body-versus-body query equal brute force, and the body
+  // pairs are exactly the self pairs that join the two spheres.
+  std::vector<double>          q;
+  std::vector<TriangleIndices> first, second;
+  estep_test::add_sphere(q, first, 0., 0., 0., 1., 24, 24);
+  estep_test::add_sphere(q, second, 1.98, 0.01, 0.02, 1., 24, 24);
+  std::vector<TriangleIndices> both = first;
+  both.insert(both.end(), second.begin(), second.end());
+  BoundingVolumeHierarchy all(both), a(first), b(second);
+  for (const double margin : {0., 0.01})
+    {
+      all.build(q.data(), q.size(), margin);
+      a.build(q.data(), q.size(), margin);
+      b.build(q.data(), q.size(), margin);
+      Pairs self, between;
+      all.find_pairs(self);
+      a.find_pairs(b, between);
+      EXPECT_EQ(sorted(self), sorted(brute_force(all)));
+      EXPECT_EQ(sorted(between),
+                sorted(brute_force(a, b, SharedVertices::excluded)));
+      EXPECT_GT(between.size(), 5u);
+      Pairs joining;
+      for (const auto &[i, j] : self)
+        if (i < first.size() && j >= first.size())
+          joining.emplace_back(i, j - first.size());
+      EXPECT_EQ(sorted(joining), sorted(between));
+    }
+}
+
+TEST(BroadPhase, DegenerateInputs)
+{
+  // All triangles in one place (equal Morton codes: the tree is split in the
+  // middle), a single triangle, no triangles.
+  std::vector<double>          q(3 * 300);
+  std::vector<TriangleIndices> tris;
+  for (unsigned int i = 0; i < 100; ++i)
+    {
+      for (unsigned int k = 0; k < 9; ++k)
+        q[9 * i + k] = (k % 3 == k / 3 ? 1. : 0.);
+      tris.push_back({{3 * i, 3 * i + 1, 3 * i + 2}});
+    }
+  BoundingVolumeHierarchy same(tris);
+  same.build(q.data(), q.size());
+  Pairs found;
+  same.find_pairs(found);
+  EXPECT_EQ(found.size(), 100u * 99u / 2u);
+  EXPECT_EQ(sorted(found), sorted(brute_force(same)));
+  same.find_pairs(same, found);
+  EXPECT_EQ(found.size(), 100u * 99u);
+
+  BoundingVolumeHierarchy one(std::vector<TriangleIndices>{{{0, 1, 2}}});
+  BoundingVolumeHierarchy none(std::vector<TriangleIndices>{});
+  one.build(q.data(), q.size());
+  none.build(q.data(), q.size());
+  one.find_pairs(found);
+  EXPECT_TRUE(found.empty());
+  one.find_pairs(one, found, SharedVertices::included);
+  EXPECT_EQ(found, (Pairs{{0, 0}}));
+  one.find_pairs(none, found);
+  EXPECT_TRUE(found.empty());
+  none.find_pairs(one, found);
+  EXPECT_TRUE(found.empty());
+  none.find_pairs(found);
+  EXPECT_TRUE(found.empty());
+  one.find_pairs(same, found, SharedVertices::included);
+  EXPECT_EQ(found.size(), 100u);
 }
 
 TEST(BroadPhase, BadInputThrows)

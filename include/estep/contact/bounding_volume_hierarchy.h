@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -31,11 +32,34 @@ namespace estep
     };
 
     /**
+     * Whether a query skips pairs of triangles that share a vertex index.
+     */
+    enum class SharedVertices
+    {
+      /** Skip them: both triangle sets index one coordinate vector, and a
+       * shared index means neighbours on a surface. */
+      excluded,
+      /** Keep them: the triangle sets index different coordinate vectors, so
+       * equal indices mean nothing. */
+      included
+    };
+
+    /**
      * Broad phase over the triangles of a surface: a bounding volume hierarchy
-     * (binary tree of axis-aligned boxes, median split along the longest axis
-     * of the centroids, at most four triangles per leaf) that finds all pairs
-     * of triangles whose boxes overlap, except pairs that share a vertex
-     * (neighbours on the surface).
+     * (binary tree of axis-aligned boxes, at most eight triangles per leaf)
+     * that finds all pairs of triangles whose boxes overlap, except pairs that
+     * share a vertex (neighbours on the surface), within one surface
+     * (find_pairs()) or between two surfaces (find_pairs(other, ...)).
+     *
+     * Construction: the triangles are sorted by the Morton code (bit
+     * interleaving of the quantised coordinates, 21 bits per axis) of their
+     * box centres, and each node's range of that order is split where the
+     * codes' highest differing bit changes, that is at the midplane of the
+     * node's octree cell (in the middle where all codes agree). The radix
+     * sort is linear and each split one binary search; on 2e5 triangles this
+     * was about 3 times cheaper than median splits. The boxes are the exact
+     * unions of the triangles' boxes, so the choice of splits affects speed,
+     * never the result.
      *
      * Coordinates: q is point-major, point i at q[3i], q[3i + 1], q[3i + 2].
      * Boxes are computed from the vertex coordinates (min and max are exact)
@@ -98,6 +122,25 @@ namespace estep
       find_pairs(
         std::vector<std::pair<unsigned int, unsigned int>> &pairs) const;
 
+      /**
+       * All pairs (i, j) of a triangle number i of this hierarchy and a
+       * triangle number j of @p other whose boxes overlap (body versus body:
+       * the two trees are descended simultaneously, so the cost follows the
+       * region where the bodies are close, not their size). With
+       * SharedVertices::excluded (both hierarchies index one coordinate
+       * vector) pairs sharing a vertex index are skipped as in find_pairs();
+       * with SharedVertices::included (each body has its own coordinate
+       * vector) they are kept. Both hierarchies must be built (with the
+       * boxes, margins and sweeps wanted; boxes are compared as they are).
+       * Replaces the content of @p pairs; the order is unspecified. @p other
+       * may be this hierarchy: then every unordered overlapping pair is found
+       * in both orders, plus (i, i) if shared vertices are included.
+       */
+      void
+      find_pairs(const BoundingVolumeHierarchy                      &other,
+                 std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+                 const SharedVertices shared = SharedVertices::excluded) const;
+
       /** Whether build() or build_swept() has been called. */
       bool
       is_built() const
@@ -143,6 +186,9 @@ namespace estep
                     const double      margin);
 
       void
+      sort_by_morton_code();
+
+      void
       build_tree();
 
       void
@@ -155,6 +201,10 @@ namespace estep
       std::vector<Node>            nodes;
       std::vector<BoundingBox>     ordered_boxes;
       std::vector<TriangleIndices> ordered_triangles;
+      // Scratch of the construction (kept to avoid reallocation on rebuild):
+      // Morton codes in tree order and the radix sort's buffers.
+      std::vector<std::uint64_t> codes, code_buffer;
+      std::vector<unsigned int>  order_buffer;
     };
 
     /** Whether two triangles share a vertex index. */

@@ -14,9 +14,11 @@ namespace estep
      * collision detection (default CcdSettings) on every query of the given CSV
      * files (directories are searched recursively for *.csv files, in sorted
      * order) and print to @p out the number of files and queries, the positives
-     * of the ground truth, false negatives, false positives, the mean time per
-     * query (microseconds, CCD calls only) and how many queries reached the
-     * iteration cap.
+     * of the ground truth, false negatives, false positives, how many queries
+     * reached the iteration cap and the mean time per query (microseconds, CCD
+     * calls only), each for all queries and for the non-degenerate ones
+     * (ccd_query_is_non_degenerate(); each class is timed as one batch per
+     * file).
      *
      * Returns 0 if there was no false negative, 1 otherwise. Throws
      * std::runtime_error with the file (and line) for a missing path, an empty
