@@ -78,6 +78,39 @@ namespace estep
           }
         return {d, r};
       }
+
+      /**
+       * Whether the closest points that define the weights of @p c lie on the
+       * primitives themselves, not only on their lines or planes, up to
+       * @p slack in distance: only then is a small distance along the normal a
+       * small distance between the primitives. (Far-apart edges whose lines
+       * nearly meet, or a vertex near the plane of a distant face, are not
+       * touching.)
+       */
+      bool
+      closest_points_on_primitives(const FirstContact &c,
+                                   const double       *x,
+                                   const double        slack)
+      {
+        const auto length = [x](const unsigned int i, const unsigned int j) {
+          const Point3 d = minus(point(x, i), point(x, j));
+          return std::sqrt(dot(d, d));
+        };
+        const auto within = [slack](const double t, const double size) {
+          const double margin = slack / std::max(size, slack);
+          return t >= -margin && t <= 1. + margin;
+        };
+        if (c.edge_edge)
+          return within(c.weights[1], length(c.points[0], c.points[1])) &&
+                 within(-c.weights[3], length(c.points[2], c.points[3]));
+        // Barycentric coordinates (w0, w1, w2) = -(weights 1, 2, 3) of the
+        // projection on the face; the face's longest edge sets the scale.
+        const double size = std::max({length(c.points[1], c.points[2]),
+                                      length(c.points[2], c.points[3]),
+                                      length(c.points[3], c.points[1])});
+        return within(-c.weights[1], size) && within(-c.weights[2], size) &&
+               within(-c.weights[3], size);
+      }
     } // namespace
 
 
@@ -243,7 +276,8 @@ namespace estep
             contact_normal(query.points, query.edge_edge, q, query.orientation);
           const auto [distance, rate] = distance_and_rate(start, q, v);
           double s0                   = 0.;
-          if (std::abs(distance) <= touching)
+          if (std::abs(distance) <= touching &&
+              closest_points_on_primitives(start, q, touching))
             {
               if (rate < 0.)
                 {

@@ -55,8 +55,10 @@ namespace estep
      *
      * Contacts at the start (the rule that avoids sticking and zero-length
      * steps right after a reflection): a primitive pair whose distance at s =
-     * 0 is at most 2 sqrt(3) tolerance and whose distance rate (gradient .
-     * v) is >= 0 is separating; it is ignored on [0, s1] with s1 = 8
+     * 0 is at most 2 sqrt(3) tolerance (along the normal, with the closest
+     * points on the primitives themselves, not beyond an edge's end or a
+     * face's boundary) and whose distance rate (gradient . v) is >= 0 is
+     * separating; it is ignored on [0, s1] with s1 = 8
      * tolerance / rate and examined by the CCD on [s1, s_max]. A pair that
      * touches at s = 0 and approaches (rate < 0) is reported at s = 0 (several
      * simultaneous contacts are then resolved one by one).
