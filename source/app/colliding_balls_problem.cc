@@ -27,12 +27,19 @@ namespace estep
                           Double(0., max),
                           "Radius of both balls.");
         prm.declare_entry(
+          "Size ratio",
+          "1",
+          Double(0., max),
+          "Radius of ball 2 over the radius of ball 1; ball 2's mesh is ball "
+          "1's mesh scaled by it (the same counts). The Hertz estimate is "
+          "given for equal balls only.");
+        prm.declare_entry(
           "Mesh size",
           "0.3",
           Double(0., max),
-          "Target edge length of the ball meshes (0.3 with radius 1: 898 "
-          "tetrahedra and 258 vertices per ball; the seed used 864 and "
-          "250).");
+          "Target edge length of the ball meshes relative to their radius "
+          "(0.3: 898 tetrahedra and 258 vertices per ball; the seed used 864 "
+          "and 250).");
         prm.declare_entry(
           "Gap",
           "0.5",
@@ -72,6 +79,7 @@ namespace estep
     {
       prm.enter_subsection("Colliding balls");
       const double R       = prm.get_double("Radius");
+      const double ratio   = prm.get_double("Size ratio");
       const double size    = prm.get_double("Mesh size");
       const double gap     = prm.get_double("Gap");
       const double speed   = prm.get_double("Speed");
@@ -80,27 +88,31 @@ namespace estep
       const double mu      = prm.get_double("Mu");
       const double density = prm.get_double("Density");
       prm.leave_subsection();
-      if (!(R > 0.) || !(size > 0.) || !(mu > 0.) || !(density > 0.))
+      if (!(R > 0.) || !(ratio > 0.) || !(size > 0.) || !(mu > 0.) ||
+          !(density > 0.))
         throw std::runtime_error(
-          "Colliding balls: the radius, mesh size, Mu and Density must be positive.");
+          "Colliding balls: the radius, size ratio, mesh size, Mu and Density "
+          "must be positive.");
       ContactParameters contact;
       contact.parse_parameters(prm);
 
       const auto material = std::make_shared<NeoHookean>(lambda, mu);
       const std::array<double, 3> centre_1 = {{0., 0., 0.}},
-                                  centre_2 = {{2. * R + gap, 0., 0.}};
+                                  centre_2 = {{(1. + ratio) * R + gap, 0., 0.}};
       std::vector<std::shared_ptr<const ElasticBody>> bodies;
       std::vector<Vector>                             q, v;
-      for (const auto &[centre, velocity, omega] :
-           {std::tuple{centre_1,
+      for (const auto &[scale, centre, velocity, omega] :
+           {std::tuple{1.,
+                       centre_1,
                        std::array<double, 3>{{0., 0., 0.}},
                        std::array<double, 3>{{0., 0., 0.}}},
-            std::tuple{centre_2,
+            std::tuple{ratio,
+                       centre_2,
                        std::array<double, 3>{{-speed, 0., 0.}},
                        std::array<double, 3>{{0., spin, 0.}}}})
         {
           dealii::Triangulation<3> tria;
-          make_ball_mesh(tria, size, R, centre);
+          make_ball_mesh(tria, size, scale * R, centre);
           auto body =
             std::make_shared<ElasticBody>(tria, material, density, "ball");
           q.push_back(body->reference_configuration());
@@ -122,11 +134,12 @@ namespace estep
       problem.description.add("balls", 2u)
         .add("cells per ball", bodies[0]->n_cells())
         .add("vertices per ball", bodies[0]->n_vertices())
-        .add("mass per ball", bodies[0]->mass())
+        .add("masses",
+             std::vector<double>{bodies[0]->mass(), bodies[1]->mass()})
         .add("Young's modulus", E)
         .add("Poisson's ratio", nu)
         .add("contact", ContactParameters::mode_name(contact.mode));
-      if (speed > 0.)
+      if (speed > 0. && ratio == 1.)
         problem.description.add("Hertz contact duration estimate", hertz);
       auto system =
         std::make_unique<ContactSystem>(bodies, contact, "colliding balls");

@@ -23,8 +23,9 @@ namespace estep
     motion_json(const RigidBodyMotion &motion)
     {
       return JsonObject()
-        .add("V", std::vector<double>(motion.velocity.begin(),
-                                      motion.velocity.end()))
+        .add("V",
+             std::vector<double>(motion.velocity.begin(),
+                                 motion.velocity.end()))
         .add("Omega",
              std::vector<double>(motion.angular.begin(), motion.angular.end()));
     }
@@ -41,11 +42,12 @@ namespace estep
   void
   ContactMonitor::after_step(const TimeIntegrator &integrator)
   {
-    const unsigned int pairs = system.n_intersecting_pairs(integrator.position());
-    const std::uint64_t events = constraint_events(integrator);
-    const bool contact = pairs > 0 || events > constraint_events_seen;
-    constraint_events_seen = events;
-    largest_pair_count     = std::max(largest_pair_count, pairs);
+    const unsigned int pairs =
+      system.n_intersecting_pairs(integrator.position());
+    const std::uint64_t events  = constraint_events(integrator);
+    const bool          contact = pairs > 0 || events > constraint_events_seen;
+    constraint_events_seen      = events;
+    largest_pair_count          = std::max(largest_pair_count, pairs);
     steps_with_pairs += (pairs > 0);
 
     const double t = integrator.time(), step = t - integrator.previous_time();
@@ -83,7 +85,7 @@ namespace estep
   {
     const auto relative_kinetic_energy = [this](const Vector &q,
                                                 const Vector &v) {
-      const RigidBodyMotion whole = system.system_motion(q, v);
+      const RigidBodyMotion whole  = system.system_motion(q, v);
       double                energy = 0.;
       for (unsigned int b = 0; b < system.n_bodies(); ++b)
         {

@@ -6,7 +6,8 @@
 # energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
 # intersecting faces during contact, the impenetrable run none at any step end; both report a
 # coefficient of restitution in [0.8, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
-# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact.
+# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact. Then the
+# high-speed variant (parameter_files/ball_collision_high_speed.prm).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
 work=$(mktemp -d)
@@ -62,6 +63,31 @@ for run in ball_collision ball_collision_impenetrable; do
 done
 check ball_collision positive
 check ball_collision_impenetrable zero
+
+# The high-speed variant (a ball of radius 0.2 at relative speed 100, exact impenetrability):
+# no intersecting pair at any step end, the small ball bounces back (no tunnelling), energy and
+# momenta conserved.
+"$ESTEP" "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_high_speed.prm" > high_speed.log 2>&1 || fail "high speed exited with $?: $(cat high_speed.log)"
+/usr/bin/python3 - output/ball_collision_high_speed/summary.json <<'PY' || fail "high speed: see above"
+import json, sys
+s = json.load(open(sys.argv[1]))
+c = s["contact"]
+p0 = max(abs(x) for x in s["initial momenta"]["linear"])
+l0 = max(abs(x) for x in s["initial momenta"]["angular"])
+checks = [(s["status"] == "completed", "status"),
+          (c["largest number of intersecting face pairs"] == 0, "intersecting pairs"),
+          (c["contact instants"] > 0, "no contact"),
+          (c["final rigid motion"]["body 2"]["V"][0] > 10., "the small ball did not bounce back"),
+          (c["final rigid motion"]["body 1"]["V"][0] < 0., "ball 1 was not pushed"),
+          (s["energies"]["terraced energy drift"] < 1e-10, "terraced energy drift"),
+          (s["linear momentum drift"] < 1e-10 * p0, "linear momentum drift"),
+          (s["angular momentum drift"] < 1e-10 * l0, "angular momentum drift"),
+          (c["first contact instant"] > 0.001, "a contact before the balls meet (t = 0.0011)")]
+bad = [message for ok, message in checks if not ok]
+for message in bad:
+    print("high speed:", message)
+sys.exit(1 if bad else 0)
+PY
 
 "$ESTEP_SOURCE_DIR/scripts/ball_collision_figures.py" --output output > figures.log 2>&1 || fail "the figure script failed: $(cat figures.log)"
 for file in figure_2_16.png figure_2_17.png ball_collision_table.md; do

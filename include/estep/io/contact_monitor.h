@@ -84,10 +84,10 @@ namespace estep
     std::uint64_t        steps_with_pairs       = 0;
     std::uint64_t        constraint_events_seen = 0;
     /** Whether the previous step end was a contact instant. */
-    bool          in_contact         = false;
-    std::uint64_t n_contact_instants = 0;
-    double        first_contact      = 0.;
-    double        last_contact     = 0.;
+    bool          in_contact                = false;
+    std::uint64_t n_contact_instants        = 0;
+    double        first_contact             = 0.;
+    double        last_contact              = 0.;
     double        step_before_first_contact = 0.;
     double        step_after_last_contact   = 0.;
   };
