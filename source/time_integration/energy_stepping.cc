@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace estep
@@ -54,18 +55,32 @@ namespace estep
     if (!(horizon > 0.))
       return;
 
-    const auto    flight = system.free_flight(q, v);
     CrossingQuery query;
     query.lower_level  = level * h;
     query.upper_level  = (level + 1) * h;
-    query.departure    = departure;
     query.horizon      = horizon;
     query.first_window = (last_flight > 0.) ? 2. * last_flight : horizon;
-    const Crossing crossing =
-      find_first_crossing(*flight, query, search_statistics);
-
-    const double s_level = crossing.direction != 0 ? crossing.s : horizon;
-    auto         contact = system.first_constraint_event(q, v, s_level);
+    Crossing                       crossing;
+    double                         s_level = horizon;
+    std::optional<ConstraintEvent> contact;
+    // A constraint event at s = 0 (another contact touching and approaching
+    // at this instant) is resolved here, before the flight: reflect and
+    // search again, so that simultaneous contacts make no zero-length steps.
+    // The cap only guards against a cycle; a contact it leaves makes one.
+    for (unsigned int k = 0;; ++k)
+      {
+        query.departure = departure;
+        crossing        = find_first_crossing(*system.free_flight(q, v),
+                                       query,
+                                       search_statistics);
+        s_level         = crossing.direction != 0 ? crossing.s : horizon;
+        contact         = system.first_constraint_event(q, v, s_level);
+        if (!contact || contact->s > 0. || k == max_simultaneous_contacts)
+          break;
+        reflect(contact->normal);
+        ++n_constraint_events;
+        departure = Departure::interior;
+      }
 
     // The flight.
     t_previous     = t;

@@ -6,7 +6,8 @@
 # energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
 # intersecting faces during contact, the impenetrable run none at any step end; both report a
 # coefficient of restitution in [0.8, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
-# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact. Then the
+# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact, but no
+# step has zero length (simultaneous contacts make one event). Then the
 # high-speed variant (parameter_files/ball_collision_high_speed.prm).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
@@ -33,6 +34,7 @@ def expect(condition, message):
         bad.append(message)
 
 expect(s["status"] == "completed", f"status {s['status']}")
+expect(s["min step"] > 0., "a zero-length step")
 expect(s["energies"]["terraced energy drift"] < 1e-10,
        f"terraced energy drift {s['energies']['terraced energy drift']}")
 p0 = max(abs(x) for x in s["initial momenta"]["linear"])
@@ -82,6 +84,7 @@ checks = [(s["status"] == "completed", "status"),
           (s["energies"]["terraced energy drift"] < 1e-10, "terraced energy drift"),
           (s["linear momentum drift"] < 1e-10 * p0, "linear momentum drift"),
           (s["angular momentum drift"] < 1e-10 * l0, "angular momentum drift"),
+          (s["min step"] > 0., "a zero-length step"),
           (c["first contact instant"] > 0.001, "a contact before the balls meet (t = 0.0011)")]
 bad = [message for ok, message in checks if not ok]
 for message in bad:

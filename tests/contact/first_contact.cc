@@ -4,12 +4,28 @@
 
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <vector>
 
 using namespace estep::contact;
 
 namespace
 {
+  struct Point
+  {
+    double x, y, z;
+  };
+
+  /** Point-major coordinates of the points @p points. */
+  std::vector<double>
+  coordinates(std::initializer_list<Point> points)
+  {
+    std::vector<double> q;
+    for (const Point &p : points)
+      q.insert(q.end(), {p.x, p.y, p.z});
+    return q;
+  }
+
   // Triangle 0 (points 0-2) at rest in the plane y = 0 with an edge on the x
   // axis from x = 0 to 1; triangle 1 (points 3-5) in the plane x = 5, with an
   // edge on the line {x = 5, y = 0}, moving with velocity (-1, vy, 0). The two
@@ -18,8 +34,12 @@ namespace
   struct Scene
   {
     std::vector<TriangleIndices> triangles = {{{0, 1, 2}}, {{3, 4, 5}}};
-    std::vector<double>          q = {0., 0., 0., 1., 0., 0., 0., 0., 3.,
-                                      5., 0., 1., 5., 0., 2., 5., 1., 1.5};
+    std::vector<double>          q         = coordinates({{0., 0., 0.},
+                                                          {1., 0., 0.},
+                                                          {0., 0., 3.},
+                                                          {5., 0., 1.},
+                                                          {5., 0., 2.},
+                                                          {5., 1., 1.5}});
     std::vector<double>          v;
 
     explicit Scene(const double vy)
@@ -61,8 +81,12 @@ TEST(FirstContact, TouchingPairsApproachOrSeparate)
   // outward normal +y).
   Scene scene(0.);
   scene.triangles[0] = {{0, 2, 1}};
-  scene.q = {0., 0., 0., 1., 0., 0., 0., 0., 3.,
-             0.2, 0., 0.5, 0.2, 1., 0.5, 0.4, 1., 1.};
+  scene.q            = coordinates({{0., 0., 0.},
+                                    {1., 0., 0.},
+                                    {0., 0., 3.},
+                                    {0.2, 0., 0.5},
+                                    {0.2, 1., 0.5},
+                                    {0.4, 1., 1.}});
   for (const double vy : {-1., 1.})
     {
       for (unsigned int point = 3; point < 6; ++point)

@@ -19,7 +19,10 @@ namespace estep
    *   lambda = (-a + sqrt(a^2 - 2 h m)) / m, and L += 1;
    * - otherwise reflecting: lambda = -2 a / m, L unchanged;
    * - descending by dV = -h: lambda = (-a - sqrt(a^2 + 2 h m)) / m, and L -= 1.
-   * At a constraint event the velocity reflects on the constraint normal. The
+   * At a constraint event the velocity reflects on the constraint normal; a
+   * further event at the same instant (another contact touching and
+   * approaching) is reflected on at once and the flight searched again, so
+   * that simultaneous contacts make no zero-length steps. The
    * terrace index L is an integer carried from event to event, never recomputed
    * from V.
    *
@@ -78,6 +81,9 @@ namespace estep
      * direction. */
     void
     jump_at_level(const int direction);
+
+    /** The most constraint events resolved at one instant before a step. */
+    static constexpr unsigned int max_simultaneous_contacts = 1000;
 
     /** Reflect the velocity on a constraint @p normal. */
     void
