@@ -268,9 +268,17 @@ namespace estep
     const double r = std::max(b - m, m - a) * (1. + 4. * unit);
     // f and f' at the centre.
     const LineValue fm = value_and_derivative(m);
+    LineEnclosure   enclosure;
     if (const auto taylor = taylor_form(m, r, fm))
-      return *taylor;
-    return natural_form(a, b, m, r);
+      enclosure = *taylor;
+    else
+      enclosure = natural_form(a, b, m, r);
+    if (m >= a && m <= b)
+      {
+        enclosure.sample_point = m;
+        enclosure.sample       = fm;
+      }
+    return enclosure;
   }
 
   /** Enclosures of J_e, J_e' and J_e'' over a parameter interval for a chunk

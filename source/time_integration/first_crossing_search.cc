@@ -26,16 +26,21 @@ namespace estep
      * flight's value tolerance of the level or the Newton step is a few units
      * of round-off of s; the point returned is then on the near side (or
      * exactly on the level): a point found beyond is stepped back by twice its
-     * Newton correction, doubled until f is on the near side.
+     * Newton correction, doubled until f is on the near side (Newton aims half
+     * the tolerance short of the level, which makes that rare). The first
+     * point is the enclosure's sample of [a, b] if it has one (no evaluation:
+     * its values narrow the bracket and give the first Newton step), else
+     * the secant point of [a, b].
      */
     double
-    locate_crossing(const FreeFlight &flight,
-                    const double      level,
-                    const double      a,
-                    const double      b,
-                    const double      fa,
-                    const double      fb,
-                    SearchStatistics &statistics)
+    locate_crossing(const FreeFlight    &flight,
+                    const double         level,
+                    const double         a,
+                    const double         b,
+                    const double         fa,
+                    const double         fb,
+                    const LineEnclosure &enclosure,
+                    SearchStatistics    &statistics)
     {
       const double sign =
         (fb >= fa) ? 1. : -1.; // g = sign (f - level) increases
@@ -46,12 +51,26 @@ namespace estep
         return LineValue{sign * (f.value - level), sign * f.derivative};
       };
       const double noise = flight.value_tolerance();
+      // Newton aims half the tolerance short of the level, so that the point
+      // it converges to is usually on the near side already.
+      const double target = 0.5 * noise;
       double       lo = a, hi = b;
       const double g_lo = sign * (fa - level), g_hi = sign * (fb - level);
       double       x             = (std::isfinite(g_hi) && g_hi > g_lo) ?
                                      lo - g_lo * (hi - lo) / (g_hi - g_lo) :
                                      0.5 * (lo + hi);
       double       previous_step = hi - lo;
+      const double m             = enclosure.sample_point;
+      if (m > lo && m < hi && std::isfinite(enclosure.sample.value) &&
+          std::isfinite(enclosure.sample.derivative))
+        {
+          const double gm = sign * (enclosure.sample.value - level),
+                       dg = sign * enclosure.sample.derivative;
+          if (gm == 0. || (gm < 0. && -gm <= noise))
+            return m; // on the level, or within round-off on the near side
+          (gm < 0. ? lo : hi) = m;
+          x = (dg > 0.) ? m - (gm + target) / dg : 0.5 * (lo + hi);
+        }
       for (unsigned int iteration = 0; iteration < 200; ++iteration)
         {
           const double resolution =
@@ -84,7 +103,9 @@ namespace estep
                 }
               return lo;
             }
-          double step = newton;
+          double step = (gx.derivative > 0.) ?
+                          -(gx.value + target) / gx.derivative :
+                          newton;
           if (!(x + step > lo && x + step < hi) ||
               std::abs(step) > 0.5 * previous_step)
             step = 0.5 * (lo + hi) - x; // bisect
@@ -189,12 +210,24 @@ namespace estep
                     prefix_end = I.b;
                     if (departure_sign > 0 && I.fb >= c1)
                       return {+1,
-                              locate_crossing(
-                                flight, c1, I.a, I.b, I.fa, I.fb, statistics)};
+                              locate_crossing(flight,
+                                              c1,
+                                              I.a,
+                                              I.b,
+                                              I.fa,
+                                              I.fb,
+                                              enclosure,
+                                              statistics)};
                     if (departure_sign < 0 && I.fb <= c0)
                       return {-1,
-                              locate_crossing(
-                                flight, c0, I.a, I.b, I.fa, I.fb, statistics)};
+                              locate_crossing(flight,
+                                              c0,
+                                              I.a,
+                                              I.b,
+                                              I.fa,
+                                              I.fb,
+                                              enclosure,
+                                              statistics)};
                     continue;
                   }
 
@@ -210,12 +243,24 @@ namespace estep
                     // level ahead of it.
                     if (increasing && I.fb >= c1)
                       return {+1,
-                              locate_crossing(
-                                flight, c1, I.a, I.b, I.fa, I.fb, statistics)};
+                              locate_crossing(flight,
+                                              c1,
+                                              I.a,
+                                              I.b,
+                                              I.fa,
+                                              I.fb,
+                                              enclosure,
+                                              statistics)};
                     if (decreasing && I.fb <= c0)
                       return {-1,
-                              locate_crossing(
-                                flight, c0, I.a, I.b, I.fa, I.fb, statistics)};
+                              locate_crossing(flight,
+                                              c0,
+                                              I.a,
+                                              I.b,
+                                              I.fa,
+                                              I.fb,
+                                              enclosure,
+                                              statistics)};
                     continue;
                   }
               }

@@ -28,6 +28,15 @@ namespace estep
     Interval value;
     /** Holds every f'(s) for s in [a, b]. */
     Interval derivative;
+    /**
+     * Optional: a point of [a, b] where the enclosure evaluated f and f' (a
+     * Taylor form's centre) and the computed values there, as
+     * value_and_derivative() returns them; NaN if there is none. The search
+     * starts locating a crossing from it instead of evaluating anew.
+     */
+    double    sample_point = std::numeric_limits<double>::quiet_NaN();
+    LineValue sample       = {std::numeric_limits<double>::quiet_NaN(),
+                              std::numeric_limits<double>::quiet_NaN()};
   };
 
   /**
