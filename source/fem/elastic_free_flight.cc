@@ -394,6 +394,7 @@ namespace estep
     enclosure.derivative =
       (Interval::point(fm.derivative) + curvature * Interval{-r, r})
         .widened(0., slope_margin);
+    enclosure.curvature = curvature;
     return enclosure;
   }
 

@@ -233,6 +233,75 @@ namespace estep
 
                 up_possible   = enclosure.value.upper >= c1;
                 down_possible = enclosure.value.lower <= c0;
+                // Convexity: where f is convex its sublevel sets are
+                // intervals, so on [a, b] it stays below max(f(a), f(b)) and
+                // crosses a level at most once going down and once going up;
+                // where it is concave, the mirror image. This decides
+                // intervals that hold a turning point of f, where the slope
+                // has no sign. It applies where f(a) lies strictly inside the
+                // terrace (outside the prefix: everything before a has been
+                // dismissed) or on the level f departs from, moving away.
+                {
+                  const auto locate = [&](const int    direction,
+                                          const double a,
+                                          const double fa,
+                                          const double b,
+                                          const double fb) -> Crossing {
+                    return {direction,
+                            locate_crossing(flight,
+                                            direction > 0 ? c1 : c0,
+                                            a,
+                                            b,
+                                            fa,
+                                            fb,
+                                            enclosure,
+                                            statistics)};
+                  };
+                  const double m     = enclosure.sample_point;
+                  const double fm    = enclosure.sample.value;
+                  const bool sampled = m > I.a && m < I.b && std::isfinite(fm);
+                  const bool inside  = !in_prefix;
+                  if (enclosure.curvature.lower > 0. &&
+                      (inside || (departure_sign < 0 && in_prefix)))
+                    {
+                      // Convex, from inside or leaving c1 downwards.
+                      if (I.fb <= c0)
+                        return locate(-1, I.a, I.fa, I.b, I.fb);
+                      if (I.fb >= c1)
+                        {
+                          if (!down_possible && inside)
+                            return locate(+1, I.a, I.fa, I.b, I.fb);
+                          if (!down_possible && sampled && fm < c1)
+                            return locate(+1, m, fm, I.b, I.fb);
+                        }
+                      else
+                        {
+                          if (sampled && fm <= c0)
+                            return locate(-1, I.a, I.fa, m, fm);
+                          up_possible = false;
+                        }
+                    }
+                  else if (enclosure.curvature.upper < 0. &&
+                           (inside || (departure_sign > 0 && in_prefix)))
+                    {
+                      // Concave, from inside or leaving c0 upwards.
+                      if (I.fb >= c1)
+                        return locate(+1, I.a, I.fa, I.b, I.fb);
+                      if (I.fb <= c0)
+                        {
+                          if (!up_possible && inside)
+                            return locate(-1, I.a, I.fa, I.b, I.fb);
+                          if (!up_possible && sampled && fm > c0)
+                            return locate(-1, m, fm, I.b, I.fb);
+                        }
+                      else
+                        {
+                          if (sampled && fm >= c1)
+                            return locate(+1, I.a, I.fa, m, fm);
+                          down_possible = false;
+                        }
+                    }
+                }
                 if (!up_possible && !down_possible)
                   continue;
 

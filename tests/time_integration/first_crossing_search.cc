@@ -5,6 +5,7 @@
 
 #include "test_flights.h"
 
+#include <iostream>
 #include <random>
 
 namespace
@@ -160,5 +161,64 @@ namespace
           }
       }
     EXPECT_GT(n_crossings, 100u);
+  }
+
+  TEST(FirstCrossingSearch, ConvexityRulesNeverReportALaterCrossing)
+  {
+    // Random quartics with a dominant quadratic term whose enclosures also
+    // bound f'' (so that the search decides intervals around turning points
+    // by convexity), starting
+    // inside the terrace [0, 1] or on one of its levels, moving away: dense
+    // sampling may only find a level reached at or after the returned
+    // crossing, and the crossing is on its level.
+    std::mt19937                           random(7);
+    std::uniform_real_distribution<double> coefficient(-30., 30.),
+      start(0.05, 0.95), slope(1., 30.), curvature(10., 60.), small(-3., 3.);
+    std::bernoulli_distribution upwards(0.5);
+    unsigned int                n_crossings = 0, n_enclosures = 0;
+    for (const Departure departure : {Departure::interior,
+                                      Departure::from_lower_level,
+                                      Departure::from_upper_level})
+      for (unsigned int trial = 0; trial < 300; ++trial)
+        {
+          const double f0 = departure == Departure::interior ? start(random) :
+                            departure == Departure::from_lower_level ? 0. :
+                                                                       1.;
+          const double f1 =
+            departure == Departure::interior         ? coefficient(random) :
+            departure == Departure::from_lower_level ? slope(random) :
+                                                       -slope(random);
+          // Mostly convex or mostly concave: a dominant s^2 term.
+          const double f2 = (upwards(random) ? 1. : -1.) * curvature(random);
+          const PolynomialFlight flight(
+            {f0, f1, f2, small(random), small(random)}, true);
+          SearchStatistics statistics;
+          const Crossing   crossing =
+            find_first_crossing(flight,
+                                query(0., 1., departure, 1., 0.01),
+                                statistics);
+          n_enclosures += statistics.n_enclosures;
+          const unsigned int n_samples = 100000;
+          for (unsigned int i = 1; i < n_samples; ++i)
+            {
+              const double s = crossing.s * i / n_samples;
+              const double f = flight.value(s);
+              ASSERT_TRUE(f > 0. && f < 1.)
+                << "a level is reached at s = " << s
+                << " before the returned crossing " << crossing.s << " (trial "
+                << trial << ", departure " << static_cast<int>(departure)
+                << ")";
+            }
+          if (crossing.direction != 0)
+            {
+              ++n_crossings;
+              EXPECT_NEAR(flight.value(crossing.s),
+                          crossing.direction > 0 ? 1. : 0.,
+                          1e-12);
+            }
+        }
+    EXPECT_GT(n_crossings, 500u);
+    std::cout << n_crossings << " crossings, " << n_enclosures
+              << " enclosures\n";
   }
 } // namespace

@@ -12,17 +12,26 @@
 
 namespace estep::testing
 {
-  /** f(s) = sum_k c[k] s^k. */
+  /**
+   * f(s) = sum_k c[k] s^k. With @p with_curvature its enclosures also hold
+   * f'' and the sample of f, f' at the centre, as the elastic body's do.
+   */
   class PolynomialFlight : public FreeFlight
   {
   public:
-    explicit PolynomialFlight(std::vector<double> coefficients)
+    explicit PolynomialFlight(std::vector<double> coefficients,
+                              const bool          with_curvature = false)
       : c(std::move(coefficients))
+      , with_curvature(with_curvature)
     {
       for (unsigned int k = 1; k < c.size(); ++k)
         dc.push_back(k * c[k]);
       if (dc.empty())
         dc.push_back(0.);
+      for (unsigned int k = 1; k < dc.size(); ++k)
+        ddc.push_back(k * dc[k]);
+      if (ddc.empty())
+        ddc.push_back(0.);
     }
 
     double
@@ -40,7 +49,36 @@ namespace estep::testing
     LineEnclosure
     enclose(const double a, const double b) const override
     {
-      return {interval_horner(c, a, b), interval_horner(dc, a, b)};
+      LineEnclosure e{interval_horner(c, a, b), interval_horner(dc, a, b)};
+      if (with_curvature)
+        {
+          // The second-order form about the centre m (as the elastic body
+          // forms it): f between the quadratics with the extreme curvatures,
+          // widened for round-off.
+          const double m = 0.5 * (a + b), r = 0.5 * (b - a);
+          e.curvature         = interval_horner(ddc, a, b);
+          e.sample_point      = m;
+          e.sample            = value_and_derivative(m);
+          const double margin = 1e-13 * (1. + std::abs(e.sample.value) +
+                                         std::abs(e.sample.derivative));
+          e.value             = Interval{quadratic_range(e.sample.value,
+                                             e.sample.derivative,
+                                             0.5 * e.curvature.lower,
+                                             -r,
+                                             r)
+                               .lower,
+                             quadratic_range(e.sample.value,
+                                             e.sample.derivative,
+                                             0.5 * e.curvature.upper,
+                                             -r,
+                                             r)
+                               .upper}
+                      .widened(0., margin);
+          e.derivative = (Interval::point(e.sample.derivative) +
+                          e.curvature * Interval{-r, r})
+                           .widened(0., margin);
+        }
+      return e;
     }
 
   private:
@@ -65,7 +103,8 @@ namespace estep::testing
       return r;
     }
 
-    std::vector<double> c, dc;
+    std::vector<double> c, dc, ddc;
+    bool                with_curvature;
   };
 
   /** f(s) = base + A exp(-((s - s0) / w)^2). */

@@ -28,6 +28,10 @@ namespace estep
     Interval value;
     /** Holds every f'(s) for s in [a, b]. */
     Interval derivative;
+    /** Holds every f''(s) for s in [a, b], if f is twice differentiable there
+     * and the enclosure knows; unbounded otherwise. */
+    Interval curvature = {-std::numeric_limits<double>::infinity(),
+                          std::numeric_limits<double>::infinity()};
     /**
      * Optional: a point of [a, b] where the enclosure evaluated f and f' (a
      * Taylor form's centre) and the computed values there, as
