@@ -191,6 +191,23 @@ namespace estep
                 ++statistics.n_enclosures;
                 const bool increasing = enclosure.derivative.lower > 0.;
                 const bool decreasing = enclosure.derivative.upper < 0.;
+                // The unique crossing in [a, b] of the level in @p direction,
+                // f(a) = fa on the near side of it, f(b) = fb beyond.
+                const auto locate = [&](const int    direction,
+                                        const double a,
+                                        const double fa,
+                                        const double b,
+                                        const double fb) -> Crossing {
+                  return {direction,
+                          locate_crossing(flight,
+                                          direction > 0 ? c1 : c0,
+                                          a,
+                                          b,
+                                          fa,
+                                          fb,
+                                          enclosure,
+                                          statistics)};
+                };
 
                 if (in_prefix &&
                     enclosure.value.lower >= sitting_level - tolerance &&
@@ -209,25 +226,9 @@ namespace estep
                     // reaches it.
                     prefix_end = I.b;
                     if (departure_sign > 0 && I.fb >= c1)
-                      return {+1,
-                              locate_crossing(flight,
-                                              c1,
-                                              I.a,
-                                              I.b,
-                                              I.fa,
-                                              I.fb,
-                                              enclosure,
-                                              statistics)};
+                      return locate(+1, I.a, I.fa, I.b, I.fb);
                     if (departure_sign < 0 && I.fb <= c0)
-                      return {-1,
-                              locate_crossing(flight,
-                                              c0,
-                                              I.a,
-                                              I.b,
-                                              I.fa,
-                                              I.fb,
-                                              enclosure,
-                                              statistics)};
+                      return locate(-1, I.a, I.fa, I.b, I.fb);
                     continue;
                   }
 
@@ -242,21 +243,6 @@ namespace estep
                 // terrace (outside the prefix: everything before a has been
                 // dismissed) or on the level f departs from, moving away.
                 {
-                  const auto locate = [&](const int    direction,
-                                          const double a,
-                                          const double fa,
-                                          const double b,
-                                          const double fb) -> Crossing {
-                    return {direction,
-                            locate_crossing(flight,
-                                            direction > 0 ? c1 : c0,
-                                            a,
-                                            b,
-                                            fa,
-                                            fb,
-                                            enclosure,
-                                            statistics)};
-                  };
                   const double m     = enclosure.sample_point;
                   const double fm    = enclosure.sample.value;
                   const bool sampled = m > I.a && m < I.b && std::isfinite(fm);
@@ -311,25 +297,9 @@ namespace estep
                     // a has been dismissed), so a monotone f can only reach the
                     // level ahead of it.
                     if (increasing && I.fb >= c1)
-                      return {+1,
-                              locate_crossing(flight,
-                                              c1,
-                                              I.a,
-                                              I.b,
-                                              I.fa,
-                                              I.fb,
-                                              enclosure,
-                                              statistics)};
+                      return locate(+1, I.a, I.fa, I.b, I.fb);
                     if (decreasing && I.fb <= c0)
-                      return {-1,
-                              locate_crossing(flight,
-                                              c0,
-                                              I.a,
-                                              I.b,
-                                              I.fa,
-                                              I.fb,
-                                              enclosure,
-                                              statistics)};
+                      return locate(-1, I.a, I.fa, I.b, I.fb);
                     continue;
                   }
               }
