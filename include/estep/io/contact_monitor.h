@@ -67,13 +67,6 @@ namespace estep
            const Vector &q1,
            const Vector &v1) const;
 
-    /** The largest number of intersecting face pairs seen at a step end. */
-    unsigned int
-    max_intersecting_pairs() const
-    {
-      return largest_pair_count;
-    }
-
     /** Time from the first to the last contact instant (0 without contact). */
     double
     contact_duration() const;
