@@ -55,13 +55,14 @@ namespace estep
                     fe.system_to_component_index(k).second == k / 3,
                   dealii::ExcInternalError());
 
-    data.n_cells  = objects.tria.n_active_cells();
-    data.n_points = objects.dof_handler.n_dofs() / 3;
+    data.n_cells                = objects.tria.n_active_cells();
+    data.n_points               = objects.dof_handler.n_dofs() / 3;
+    const unsigned int n_padded = data.n_padded_cells();
     for (auto &v : data.point)
-      v.resize(data.n_cells);
+      v.resize(n_padded);
     for (auto &v : data.shape_gradient)
-      v.resize(data.n_cells);
-    data.volume.resize(data.n_cells);
+      v.resize(n_padded);
+    data.volume.resize(n_padded);
     data.reference_position.assign(3 * data.n_points, 0.);
     data.lumped_mass.assign(data.n_points, 0.);
 
@@ -93,6 +94,16 @@ namespace estep
           for (unsigned int j = 0; j < 3; ++j)
             data.shape_gradient[3 * a + j][e] = B[a][j];
         total_volume += data.volume[e];
+      }
+    // The padding of the last batch of four cells: copies of the last cell
+    // with volume 0.
+    for (unsigned int e = data.n_cells; e < n_padded; ++e)
+      {
+        for (auto &v : data.point)
+          v[e] = v[data.n_cells - 1];
+        for (auto &v : data.shape_gradient)
+          v[e] = v[data.n_cells - 1];
+        data.volume[e] = 0.;
       }
 
     // Lumped mass with deal.II (row sums of the consistent mass of the scalar
@@ -158,7 +169,7 @@ namespace estep
         for (unsigned int c = 0; c < 3; ++c)
           inv_mass[3 * i + c] = 1. / data.lumped_mass[i];
       }
-    scratch_J.resize(data.n_cells);
+    scratch_J.resize(n_padded);
   }
 
   ElasticBody::~ElasticBody() = default;
@@ -187,20 +198,95 @@ namespace estep
     return inv_mass;
   }
 
+  namespace
+  {
+    /**
+     * J_e = det F_e of every cell (padding included) into @p J; returns
+     * sum_e |Omega_e| (|F_e|^2 - 3).
+     */
+    ESTEP_LANE_KERNEL double
+    jacobians_and_square_sum(const P1CellData &data, const double *x, double *J)
+    {
+      Lanes square = lanes(0.);
+      for (unsigned int e = 0; e < data.n_cells; e += n_lanes)
+        {
+          Lanes F[9], C[9];
+          internal::deformation_gradient(x, data, e, F);
+          internal::cofactor(F, C);
+          store_lanes(J + e, internal::determinant(F, C));
+          square += load_lanes(data.volume.data() + e) *
+                    (internal::contract(F, F) - 3.);
+        }
+      return sum(square);
+    }
+
+    /**
+     * Adds the nodal forces |Omega_e| P_e grad N_a of every cell to @p y, with
+     * P = f'(J) cof F + c F, in chunks of cells: F and cof F stay in L1
+     * between the determinant pass and the assembly pass, and f'(J) is one
+     * batch call of the material per chunk.
+     */
+    ESTEP_LANE_KERNEL void
+    assemble_gradient(const P1CellData &data,
+                      const Material   &material,
+                      const double     *x,
+                      double           *y)
+    {
+      constexpr unsigned int chunk = 128; // a multiple of n_lanes
+      const double           c     = material.quadratic_modulus();
+      Lanes                  F[chunk / n_lanes][9], C[chunk / n_lanes][9];
+      double                 J[chunk], df[chunk];
+      for (unsigned int begin = 0; begin < data.n_cells; begin += chunk)
+        {
+          const unsigned int m = std::min(chunk, data.n_padded_cells() - begin);
+          for (unsigned int b = 0; b < m / n_lanes; ++b)
+            {
+              internal::deformation_gradient(x,
+                                             data,
+                                             begin + n_lanes * b,
+                                             F[b]);
+              internal::cofactor(F[b], C[b]);
+              store_lanes(J + n_lanes * b, internal::determinant(F[b], C[b]));
+            }
+          material.volumetric_derivatives(J, df, m);
+          for (unsigned int b = 0; b < m / n_lanes; ++b)
+            {
+              const unsigned int e = begin + n_lanes * b;
+              const Lanes        w = load_lanes(data.volume.data() + e);
+              const Lanes dfv = load_lanes(df + n_lanes * b) * w, cv = c * w;
+              Lanes       P[9];
+              for (unsigned int l = 0; l < 9; ++l)
+                P[l] = dfv * C[b][l] + cv * F[b][l];
+              for (unsigned int a = 0; a < 3; ++a)
+                {
+                  const Lanes B0 = load_lanes(
+                                data.shape_gradient[3 * a].data() + e),
+                              B1 = load_lanes(
+                                data.shape_gradient[3 * a + 1].data() + e),
+                              B2 = load_lanes(
+                                data.shape_gradient[3 * a + 2].data() + e);
+                  for (unsigned int i = 0; i < 3; ++i)
+                    {
+                      const Lanes h =
+                        P[3 * i] * B0 + P[3 * i + 1] * B1 + P[3 * i + 2] * B2;
+                      for (unsigned int k = 0; k < n_lanes; ++k)
+                        {
+                          y[3 * data.point[a + 1][e + k] + i] += h[k];
+                          y[3 * data.point[0][e + k] + i] -= h[k];
+                        }
+                    }
+                }
+            }
+        }
+    }
+  } // namespace
+
   double
   ElasticBody::energy(const Vector &q) const
   {
     AssertDimension(q.size(), n_dofs());
-    const double *x      = q.data();
-    double        square = 0.;
-    for (unsigned int e = 0; e < data.n_cells; ++e)
-      {
-        double F[9], C[9];
-        internal::deformation_gradient(x, data, e, F);
-        internal::cofactor(F, C);
-        scratch_J[e] = internal::determinant(F, C);
-        square += data.volume[e] * (internal::contract(F, F) - 3.);
-      }
+    const double square =
+      jacobians_and_square_sum(data, q.data(), scratch_J.data());
     const double volumetric =
       body_material->sum_volumetric_energy(scratch_J.data(),
                                            data.volume.data(),
@@ -218,49 +304,7 @@ namespace estep
   {
     AssertDimension(q.size(), n_dofs());
     g.reinit(n_dofs());
-    const double *x = q.data();
-    double       *y = g.data();
-    const double  c = body_material->quadratic_modulus();
-    // Chunks of cells: F and cof F are kept (in L1) between the determinant
-    // pass and the assembly pass, and f'(J) is computed by one batch call per
-    // chunk.
-    constexpr unsigned int chunk = 128;
-    double                 F[chunk][9], C[chunk][9], J[chunk], df[chunk];
-    for (unsigned int begin = 0; begin < data.n_cells; begin += chunk)
-      {
-        const unsigned int m = std::min(chunk, data.n_cells - begin);
-        for (unsigned int k = 0; k < m; ++k)
-          {
-            internal::deformation_gradient(x, data, begin + k, F[k]);
-            internal::cofactor(F[k], C[k]);
-            J[k] = internal::determinant(F[k], C[k]);
-          }
-        body_material->volumetric_derivatives(J, df, m);
-        for (unsigned int k = 0; k < m; ++k)
-          {
-            const unsigned int e = begin + k;
-            double             P[9];
-            // P = f'(J) cof F + c F, times the volume.
-            const double dfv = df[k] * data.volume[e], cv = c * data.volume[e];
-            for (unsigned int l = 0; l < 9; ++l)
-              P[l] = dfv * C[k][l] + cv * F[k][l];
-            const unsigned int p0 = 3 * data.point[0][e];
-            for (unsigned int a = 0; a < 3; ++a)
-              {
-                const unsigned int pa = 3 * data.point[a + 1][e];
-                const double       B0 = data.shape_gradient[3 * a][e],
-                             B1       = data.shape_gradient[3 * a + 1][e],
-                             B2       = data.shape_gradient[3 * a + 2][e];
-                for (unsigned int i = 0; i < 3; ++i)
-                  {
-                    const double h =
-                      P[3 * i] * B0 + P[3 * i + 1] * B1 + P[3 * i + 2] * B2;
-                    y[pa + i] += h;
-                    y[p0 + i] -= h;
-                  }
-              }
-          }
-      }
+    assemble_gradient(data, *body_material, q.data(), g.data());
   }
 
   std::unique_ptr<FreeFlight>

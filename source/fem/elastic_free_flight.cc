@@ -170,6 +170,68 @@ namespace estep
         }
       return std::min(first_root_from_below(c0, c1, c2, c3, u, w), limit);
     }
+
+    /**
+     * The cubic coefficients of J_e(s) of every cell (padding included) and
+     * sums[] = sum_e |Omega_e| (|F_e|^2 - 3), sum_e |Omega_e| F_e : G_e and
+     * sum_e |Omega_e| |G_e|^2, four cells at a time.
+     */
+    ESTEP_LANE_KERNEL void
+    build_cubics(const P1CellData &d,
+                 const double     *q,
+                 const double     *v,
+                 double           *c0,
+                 double           *c1,
+                 double           *c2,
+                 double           *c3,
+                 double           *sums)
+    {
+      Lanes FF = lanes(0.), FG = lanes(0.), GG = lanes(0.);
+      for (unsigned int e = 0; e < d.n_cells; e += n_lanes)
+        {
+          Lanes F[9], G[9], CF[9], CG[9];
+          internal::deformation_gradient(q, d, e, F);
+          internal::deformation_gradient(v, d, e, G);
+          internal::cofactor(F, CF);
+          internal::cofactor(G, CG);
+          store_lanes(c0 + e, internal::determinant(F, CF));
+          store_lanes(c1 + e, internal::contract(CF, G));
+          store_lanes(c2 + e, internal::contract(CG, F));
+          store_lanes(c3 + e, internal::determinant(G, CG));
+          const Lanes w = load_lanes(d.volume.data() + e);
+          FF += w * (internal::contract(F, F) - 3.);
+          FG += w * internal::contract(F, G);
+          GG += w * internal::contract(G, G);
+        }
+      sums[0] = sum(FF);
+      sums[1] = sum(FG);
+      sums[2] = sum(GG);
+    }
+
+    /**
+     * J[i] = c0[i] + c1[i] s + c2[i] s^2 + c3[i] s^3 (Horner) and, if @p dJ
+     * is not null, dJ[i] = J'(s), for i < n rounded up to a multiple of 4 (the
+     * arrays are padded).
+     */
+    ESTEP_LANE_KERNEL void
+    evaluate_cubics(const double       s,
+                    const double      *c0,
+                    const double      *c1,
+                    const double      *c2,
+                    const double      *c3,
+                    const unsigned int n,
+                    double            *J,
+                    double            *dJ)
+    {
+      for (unsigned int i = 0; i < n; i += n_lanes)
+        {
+          const Lanes k1 = load_lanes(c1 + i), k2 = load_lanes(c2 + i),
+                      k3 = load_lanes(c3 + i);
+          store_lanes(J + i, load_lanes(c0 + i) + s * (k1 + s * (k2 + s * k3)));
+          if (dJ != nullptr)
+            store_lanes(dJ + i, k1 + s * (2. * k2 + 3. * s * k3));
+        }
+    }
   } // namespace
 
   ElasticFreeFlight::ElasticFreeFlight(const ElasticBody &body,
@@ -180,31 +242,17 @@ namespace estep
   {
     AssertDimension(q.size(), body.n_dofs());
     AssertDimension(v.size(), body.n_dofs());
-    const P1CellData &d = body.cell_data();
     // Not value-initialised: every entry is written before it is read.
-    storage.reset(new double[6 * std::size_t(n_cells)]);
-    c0        = storage.get();
-    c1        = c0 + n_cells;
-    c2        = c1 + n_cells;
-    c3        = c2 + n_cells;
-    scratch   = c3 + n_cells;
-    double FF = 0., FG = 0., GG = 0.;
-    for (unsigned int e = 0; e < n_cells; ++e)
-      {
-        double F[9], G[9], CF[9], CG[9];
-        internal::deformation_gradient(q.data(), d, e, F);
-        internal::deformation_gradient(v.data(), d, e, G);
-        internal::cofactor(F, CF);
-        internal::cofactor(G, CG);
-        c0[e]          = internal::determinant(F, CF);
-        c1[e]          = internal::contract(CF, G);
-        c2[e]          = internal::contract(CG, F);
-        c3[e]          = internal::determinant(G, CG);
-        const double w = d.volume[e];
-        FF += w * (internal::contract(F, F) - 3.);
-        FG += w * internal::contract(F, G);
-        GG += w * internal::contract(G, G);
-      }
+    const unsigned int n_padded = body.cell_data().n_padded_cells();
+    storage.reset(new double[6 * std::size_t(n_padded)]);
+    c0      = storage.get();
+    c1      = c0 + n_padded;
+    c2      = c1 + n_padded;
+    c3      = c2 + n_padded;
+    scratch = c3 + n_padded;
+    double sums[3];
+    build_cubics(body.cell_data(), q.data(), v.data(), c0, c1, c2, c3, sums);
+    const double    FF = sums[0], FG = sums[1], GG = sums[2];
     const Material &material = body.material();
     const double    c        = material.quadratic_modulus();
     quadratic[0] =
@@ -229,8 +277,7 @@ namespace estep
   ElasticFreeFlight::value(const double s) const
   {
     double *J = scratch;
-    for (unsigned int e = 0; e < n_cells; ++e)
-      J[e] = cubic(c0[e], c1[e], c2[e], c3[e], s);
+    evaluate_cubics(s, c0, c1, c2, c3, n_cells, J, nullptr);
     const double volumetric =
       body.material().sum_volumetric_energy(J,
                                             body.cell_data().volume.data(),
@@ -243,12 +290,8 @@ namespace estep
   LineValue
   ElasticFreeFlight::value_and_derivative(const double s) const
   {
-    double *J = scratch, *dJ = scratch + n_cells;
-    for (unsigned int e = 0; e < n_cells; ++e)
-      {
-        J[e]  = cubic(c0[e], c1[e], c2[e], c3[e], s);
-        dJ[e] = c1[e] + s * (2. * c2[e] + 3. * s * c3[e]);
-      }
+    double *J = scratch, *dJ = scratch + body.cell_data().n_padded_cells();
+    evaluate_cubics(s, c0, c1, c2, c3, n_cells, J, dJ);
     LineValue r = body.material().sum_volumetric_energy_and_slope(
       J, dJ, body.cell_data().volume.data(), n_cells);
     if (!std::isfinite(r.value))
@@ -281,60 +324,71 @@ namespace estep
     return enclosure;
   }
 
-  /** Enclosures of J_e, J_e' and J_e'' over a parameter interval for a chunk
-   * of cells (lower and upper bounds; small enough to stay in the L1 cache).
-   */
-  struct ElasticFreeFlight::JacobianRanges
+  namespace
   {
-    static constexpr unsigned int size = 256;
-    double J_lo[size], J_hi[size], dJ_lo[size], dJ_hi[size], d2J_lo[size],
-      d2J_hi[size];
-  };
+    /** Enclosures of J_e, J_e' and J_e'' over a parameter interval for a
+     * chunk of cells (lower and upper bounds; small enough to stay in the L1
+     * cache).
+     */
+    struct JacobianRanges
+    {
+      static constexpr unsigned int size = 256; // a multiple of n_lanes
+      double J_lo[size], J_hi[size], dJ_lo[size], dJ_hi[size], d2J_lo[size],
+        d2J_hi[size];
+    };
 
-  void
-  ElasticFreeFlight::enclose_jacobians(const double       m,
-                                       const double       r,
-                                       const unsigned int begin,
-                                       const unsigned int count,
-                                       JacobianRanges    &ranges) const
-  {
-    // J(m + t) = Jm + D1 t + D2 t^2 + c3 t^3 exactly, |t| <= r, so
-    //   J   in Jm + D2 [0, r^2] + [-1, 1] (|D1| r + |c3| r^3),
-    //   J'  in D1 + 3 c3 [0, r^2] + [-1, 1] 2 |D2| r,
-    //   J'' in 2 D2 + [-1, 1] 6 |c3| r,
-    // widened by a bound on the rounding of these formulas and of the
-    // Horner evaluation of J in value() (both a few units of round-off of
-    // the magnitudes of the terms at S = |m| + r).
-    const double S = std::abs(m) + r, r2 = r * r;
-    for (unsigned int i = 0; i < count; ++i)
-      {
-        const unsigned int e  = begin + i;
-        const double       k0 = c0[e], k1 = c1[e], k2 = c2[e], k3 = c3[e];
-        const double       Jm = cubic(k0, k1, k2, k3, m);
-        const double       D1 = k1 + m * (2. * k2 + 3. * m * k3);
-        const double       D2 = k2 + 3. * m * k3;
-        const double a1 = std::abs(k1), a2 = std::abs(k2), a3 = std::abs(k3);
-        const double scale0 = cubic_scale(k0, k1, k2, k3, S);
-        const double scale1 = a1 + S * (2. * a2 + 3. * S * a3);
-        const double scale2 = 2. * a2 + 6. * S * a3;
+    /**
+     * Enclosures of J, J' and J'' over [m - r, m + r] of the cubics c0[i] +
+     * c1[i] s + c2[i] s^2 + c3[i] s^3, i < count rounded up to a multiple of
+     * 4 (the arrays are padded), four cells at a time.
+     */
+    ESTEP_LANE_KERNEL void
+    enclose_cubics(const double       m,
+                   const double       r,
+                   const double      *c0,
+                   const double      *c1,
+                   const double      *c2,
+                   const double      *c3,
+                   const unsigned int count,
+                   JacobianRanges    &ranges)
+    {
+      // J(m + t) = Jm + D1 t + D2 t^2 + c3 t^3 exactly, |t| <= r, so
+      //   J   in Jm + D2 [0, r^2] + [-1, 1] (|D1| r + |c3| r^3),
+      //   J'  in D1 + 3 c3 [0, r^2] + [-1, 1] 2 |D2| r,
+      //   J'' in 2 D2 + [-1, 1] 6 |c3| r,
+      // widened by a bound on the rounding of these formulas and of the
+      // Horner evaluation of J in value() (both a few units of round-off of
+      // the magnitudes of the terms at S = |m| + r).
+      const double S = std::abs(m) + r, r2 = r * r;
+      for (unsigned int i = 0; i < count; i += n_lanes)
+        {
+          const Lanes k0 = load_lanes(c0 + i), k1 = load_lanes(c1 + i),
+                      k2 = load_lanes(c2 + i), k3 = load_lanes(c3 + i);
+          const Lanes Jm = k0 + m * (k1 + m * (k2 + m * k3));
+          const Lanes D1 = k1 + m * (2. * k2 + 3. * m * k3);
+          const Lanes D2 = k2 + 3. * m * k3;
+          const Lanes a1 = abs(k1), a2 = abs(k2), a3 = abs(k3);
+          const Lanes scale0 = abs(k0) + S * (a1 + S * (a2 + S * a3));
+          const Lanes scale1 = a1 + S * (2. * a2 + 3. * S * a3);
+          const Lanes scale2 = 2. * a2 + 6. * S * a3;
 
-        const double curve = D2 * r2;
-        const double spread0 =
-          std::abs(D1) * r + a3 * r2 * r + jacobian_rounding * scale0;
-        ranges.J_lo[i] = Jm + std::min(curve, 0.) - spread0;
-        ranges.J_hi[i] = Jm + std::max(curve, 0.) + spread0;
+          const Lanes curve = D2 * r2;
+          const Lanes spread0 =
+            abs(D1) * r + a3 * (r2 * r) + jacobian_rounding * scale0;
+          store_lanes(ranges.J_lo + i, Jm + min(curve, lanes(0.)) - spread0);
+          store_lanes(ranges.J_hi + i, Jm + max(curve, lanes(0.)) + spread0);
 
-        const double bend = 3. * k3 * r2;
-        const double spread1 =
-          2. * std::abs(D2) * r + jacobian_rounding * scale1;
-        ranges.dJ_lo[i] = D1 + std::min(bend, 0.) - spread1;
-        ranges.dJ_hi[i] = D1 + std::max(bend, 0.) + spread1;
+          const Lanes bend    = 3. * r2 * k3;
+          const Lanes spread1 = 2. * r * abs(D2) + jacobian_rounding * scale1;
+          store_lanes(ranges.dJ_lo + i, D1 + min(bend, lanes(0.)) - spread1);
+          store_lanes(ranges.dJ_hi + i, D1 + max(bend, lanes(0.)) + spread1);
 
-        const double spread2 = 6. * a3 * r + jacobian_rounding * scale2;
-        ranges.d2J_lo[i]     = 2. * D2 - spread2;
-        ranges.d2J_hi[i]     = 2. * D2 + spread2;
-      }
-  }
+          const Lanes spread2 = 6. * r * a3 + jacobian_rounding * scale2;
+          store_lanes(ranges.d2J_lo + i, 2. * D2 - spread2);
+          store_lanes(ranges.d2J_hi + i, 2. * D2 + spread2);
+        }
+    }
+  } // namespace
 
   std::optional<LineEnclosure>
   ElasticFreeFlight::taylor_form(const double     m,
@@ -357,7 +411,8 @@ namespace estep
       {
         const unsigned int count =
           std::min(JacobianRanges::size, n_cells - begin);
-        enclose_jacobians(m, r, begin, count, ranges);
+        enclose_cubics(
+          m, r, c0 + begin, c1 + begin, c2 + begin, c3 + begin, count, ranges);
         double         chunk_slope = 0.;
         const Interval chunk = body.material().enclose_volumetric_curvature_sum(
           ranges.J_lo,
@@ -412,7 +467,14 @@ namespace estep
       {
         const unsigned int count =
           std::min(JacobianRanges::size, n_cells - begin);
-        enclose_jacobians(m, half_width, begin, count, ranges);
+        enclose_cubics(m,
+                       half_width,
+                       c0 + begin,
+                       c1 + begin,
+                       c2 + begin,
+                       c3 + begin,
+                       count,
+                       ranges);
         const LineEnclosure chunk = body.material().enclose_volumetric_sum(
           ranges.J_lo,
           ranges.J_hi,

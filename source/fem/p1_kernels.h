@@ -3,6 +3,7 @@
 
 // Private inline kernels of the P1 elastic body (not installed).
 
+#include <estep/base/lanes.h>
 #include <estep/fem/p1_cell_data.h>
 
 namespace estep
@@ -34,9 +35,38 @@ namespace estep
         }
     }
 
-    /** Cofactor matrix C = d det F / dF (row-major). */
-    inline void
-    cofactor(const double *F, double *C)
+    /**
+     * F of the four cells @p e, ..., @p e + 3 (e a multiple of 4; the cell
+     * arrays are padded to whole batches), one Lanes per entry.
+     */
+    ESTEP_LANE_INLINE void
+    deformation_gradient(const double      *x,
+                         const P1CellData  &d,
+                         const unsigned int e,
+                         Lanes             *F)
+    {
+      Lanes B[9];
+      for (unsigned int k = 0; k < 9; ++k)
+        B[k] = load_lanes(d.shape_gradient[k].data() + e);
+      const unsigned int *p0 = d.point[0].data() + e,
+                         *p1 = d.point[1].data() + e,
+                         *p2 = d.point[2].data() + e,
+                         *p3 = d.point[3].data() + e;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          const Lanes x0 = gather_lanes(x, p0, 3, i);
+          const Lanes d1 = gather_lanes(x, p1, 3, i) - x0,
+                      d2 = gather_lanes(x, p2, 3, i) - x0,
+                      d3 = gather_lanes(x, p3, 3, i) - x0;
+          for (unsigned int j = 0; j < 3; ++j)
+            F[3 * i + j] = d1 * B[j] + d2 * B[3 + j] + d3 * B[6 + j];
+        }
+    }
+
+    /** Cofactor matrix C = d det F / dF (row-major); T is double or Lanes. */
+    template <typename T>
+    ESTEP_LANE_INLINE void
+    cofactor(const T *F, T *C)
     {
       C[0] = F[4] * F[8] - F[5] * F[7];
       C[1] = F[5] * F[6] - F[3] * F[8];
@@ -50,18 +80,20 @@ namespace estep
     }
 
     /** det F by the first row and its cofactors. */
-    inline double
-    determinant(const double *F, const double *C)
+    template <typename T>
+    ESTEP_LANE_INLINE T
+    determinant(const T *F, const T *C)
     {
       return F[0] * C[0] + F[1] * C[1] + F[2] * C[2];
     }
 
     /** A : B for 3x3 matrices. */
-    inline double
-    contract(const double *A, const double *B)
+    template <typename T>
+    ESTEP_LANE_INLINE T
+    contract(const T *A, const T *B)
     {
-      double s = 0.;
-      for (unsigned int k = 0; k < 9; ++k)
+      T s = A[0] * B[0];
+      for (unsigned int k = 1; k < 9; ++k)
         s += A[k] * B[k];
       return s;
     }

@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
+#include <estep/base/lanes.h>
 #include <estep/materials/batch_log.h>
 #include <estep/materials/neo_hookean.h>
 
@@ -74,6 +75,139 @@ namespace estep
                    p4 = a_hi * b_hi;
       lower           = std::min(std::min(p1, p2), std::min(p3, p4));
       upper           = std::max(std::max(p1, p2), std::max(p3, p4));
+    }
+
+    // The batch kernels, four cells at a time. Arrays of length n are read in
+    // batches (load_batch); the lanes past the end of the last batch get
+    // neutral values (J = 1, L = 0, rates 0, weight 0) that add nothing.
+
+    /** Sum of w[i] L[i] (a L[i] - mu) for i < n. */
+    ESTEP_LANE_KERNEL double
+    energy_sum(const double      a,
+               const double      mu,
+               const double     *L,
+               const double     *w,
+               const std::size_t n)
+    {
+      Lanes sum_lanes = lanes(0.);
+      for (std::size_t i = 0; i < n; i += n_lanes)
+        {
+          const Lanes Li = load_batch(L, i, n, 0.);
+          sum_lanes += load_batch(w, i, n, 0.) * Li * (a * Li - mu);
+        }
+      return sum(sum_lanes);
+    }
+
+    /** The sums of w[i] L[i] (a L[i] - mu) and of w[i] (2 a L[i] - mu) dJ[i]
+     * / J[i] for i < n. */
+    ESTEP_LANE_KERNEL LineValue
+    energy_and_slope_sum(const double      a,
+                         const double      mu,
+                         const double     *J,
+                         const double     *dJ,
+                         const double     *L,
+                         const double     *w,
+                         const std::size_t n)
+    {
+      Lanes value = lanes(0.), slope = lanes(0.);
+      for (std::size_t i = 0; i < n; i += n_lanes)
+        {
+          const Lanes Li = load_batch(L, i, n, 0.),
+                      wi = load_batch(w, i, n, 0.);
+          value += wi * Li * (a * Li - mu);
+          slope += wi * (2. * a * Li - mu) * load_batch(dJ, i, n, 0.) /
+                   load_batch(J, i, n, 1.);
+        }
+      return {sum(value), sum(slope)};
+    }
+
+    /** df[i] = (lambda L[i] - mu) / J[i] for i < n (L and df may be the same
+     * array). */
+    ESTEP_LANE_KERNEL void
+    derivatives(const double      lambda,
+                const double      mu,
+                const double     *J,
+                const double     *L,
+                double           *df,
+                const std::size_t n)
+    {
+      std::size_t i = 0;
+      for (; i + n_lanes <= n; i += n_lanes)
+        store_lanes(df + i,
+                    (lambda * load_lanes(L + i) - mu) / load_lanes(J + i));
+      for (; i < n; ++i)
+        df[i] = (lambda * L[i] - mu) / J[i];
+    }
+
+    /**
+     * The sums over i < n of the curvature enclosure of
+     * NeoHookean::enclose_volumetric_curvature_sum() (all J_lo > 0, L_lo and
+     * L_hi their logarithms): lower, upper and magnitude in @p result, the
+     * slope magnitude in result[3].
+     */
+    ESTEP_LANE_KERNEL void
+    curvature_sums(const double      lambda,
+                   const double      mu,
+                   const double     *J_lo,
+                   const double     *J_hi,
+                   const double     *L_lo,
+                   const double     *L_hi,
+                   const double     *dJ_lo,
+                   const double     *dJ_hi,
+                   const double     *d2J_lo,
+                   const double     *d2J_hi,
+                   const double     *w,
+                   const std::size_t n,
+                   double           *result)
+    {
+      const double log_factor = 2. * batch_log_ulp() * unit;
+      const Lanes  zero       = lanes(0.);
+      Lanes        lower = zero, upper = zero, magnitude = zero, slope = zero;
+      for (std::size_t i = 0; i < n; i += n_lanes)
+        {
+          const Lanes Jl = load_batch(J_lo, i, n, 1.),
+                      Jh = load_batch(J_hi, i, n, 1.),
+                      Ll = load_batch(L_lo, i, n, 0.),
+                      Lh = load_batch(L_hi, i, n, 0.);
+          const Lanes e  = log_factor * (lambda * max(abs(Ll), abs(Lh)) + mu);
+          // f' = (lambda L - mu) / J and f'' = (lambda + mu - lambda L) / J^2
+          // over the box, each end divided by the J end that makes it
+          // extreme (0 < J_lo <= J_hi).
+          const Lanes N1_lo = lambda * Ll - mu - e,
+                      N1_hi = lambda * Lh - mu + e;
+          const Lanes f1_lo = N1_lo / (N1_lo >= 0. ? Jh : Jl),
+                      f1_hi = N1_hi / (N1_hi >= 0. ? Jl : Jh);
+          const Lanes N2_lo = lambda + mu - lambda * Lh - e,
+                      N2_hi = lambda + mu - lambda * Ll + e;
+          const Lanes f2_lo = N2_lo / (N2_lo >= 0. ? Jh * Jh : Jl * Jl),
+                      f2_hi = N2_hi / (N2_hi >= 0. ? Jl * Jl : Jh * Jh);
+          // J'^2 over [a, b].
+          const Lanes a    = load_batch(dJ_lo, i, n, 0.),
+                      b    = load_batch(dJ_hi, i, n, 0.);
+          const Lanes s_hi = max(a * a, b * b);
+          const Lanes s_lo = (a <= 0. && b >= 0.) ? zero : min(a * a, b * b);
+          // The products f'' J'^2 and f' J''.
+          const Lanes c  = load_batch(d2J_lo, i, n, 0.),
+                      d  = load_batch(d2J_hi, i, n, 0.);
+          const Lanes p1 = f2_lo * s_lo, p2 = f2_lo * s_hi, p3 = f2_hi * s_lo,
+                      p4 = f2_hi * s_hi;
+          const Lanes q1 = f1_lo * c, q2 = f1_lo * d, q3 = f1_hi * c,
+                      q4   = f1_hi * d;
+          const Lanes p_lo = min(min(p1, p2), min(p3, p4)),
+                      p_hi = max(max(p1, p2), max(p3, p4));
+          const Lanes q_lo = min(min(q1, q2), min(q3, q4)),
+                      q_hi = max(max(q1, q2), max(q3, q4));
+          const Lanes wi   = load_batch(w, i, n, 0.);
+          lower += wi * (p_lo + q_lo);
+          upper += wi * (p_hi + q_hi);
+          magnitude +=
+            wi * (max(abs(p_lo), abs(p_hi)) + max(abs(q_lo), abs(q_hi)));
+          slope += wi * max(abs(f1_lo), abs(f1_hi)) * max(abs(a), abs(b));
+        }
+      result[0] = sum(lower);
+      result[1] = sum(upper);
+      result[2] = sum(magnitude);
+      result[3] = sum(slope);
     }
   } // namespace
 
@@ -197,16 +331,7 @@ namespace estep
         if (inadmissible)
           return infinity;
         batch_log(Jc, L, m);
-        double      s0 = 0., s1 = 0.;
-        std::size_t i = 0;
-        for (; i + 2 <= m; i += 2)
-          {
-            s0 += wc[i] * L[i] * (a * L[i] - mu0);
-            s1 += wc[i + 1] * L[i + 1] * (a * L[i + 1] - mu0);
-          }
-        for (; i < m; ++i)
-          s0 += wc[i] * L[i] * (a * L[i] - mu0);
-        sum += s0 + s1;
+        sum += energy_sum(a, mu0, L, wc, m);
       }
     return sum;
   }
@@ -230,14 +355,10 @@ namespace estep
         if (inadmissible)
           return {infinity, 0.};
         batch_log(Jc, L, m);
-        double value = 0., slope = 0.;
-        for (std::size_t i = 0; i < m; ++i)
-          {
-            value += wc[i] * L[i] * (a * L[i] - mu0);
-            slope += wc[i] * (lambda0 * L[i] - mu0) * dJc[i] / Jc[i];
-          }
-        r.value += value;
-        r.derivative += slope;
+        const LineValue chunk_sums =
+          energy_and_slope_sum(a, mu0, Jc, dJc, L, wc, m);
+        r.value += chunk_sums.value;
+        r.derivative += chunk_sums.derivative;
       }
     return r;
   }
@@ -248,8 +369,7 @@ namespace estep
                                      const std::size_t n) const
   {
     batch_log(J, df, n);
-    for (std::size_t i = 0; i < n; ++i)
-      df[i] = (lambda0 * df[i] - mu0) / J[i];
+    derivatives(lambda0, mu0, J, df, df, n);
   }
 
   LineEnclosure
@@ -338,8 +458,7 @@ namespace estep
                                                const std::size_t n,
                                                double &slope_magnitude) const
   {
-    const double log_factor = 2. * batch_log_ulp() * unit;
-    double       lower = 0., upper = 0., magnitude = 0.;
+    double lower = 0., upper = 0., magnitude = 0.;
     slope_magnitude = 0.;
     double L_lo[chunk], L_hi[chunk];
     for (std::size_t begin = 0; begin < n; begin += chunk)
@@ -350,40 +469,24 @@ namespace estep
             return {-infinity, infinity};
         batch_log(J_lo + begin, L_lo, m);
         batch_log(J_hi + begin, L_hi, m);
-        for (std::size_t i = 0; i < m; ++i)
-          {
-            const std::size_t k = begin + i;
-            const double      e =
-              log_factor *
-              (lambda0 * std::max(std::abs(L_lo[i]), std::abs(L_hi[i])) + mu0);
-            double f1_lo, f1_hi, f2_lo, f2_hi;
-            divide_positive(lambda0 * L_lo[i] - mu0 - e,
-                            lambda0 * L_hi[i] - mu0 + e,
-                            J_lo[k],
-                            J_hi[k],
-                            f1_lo,
-                            f1_hi);
-            divide_positive(lambda0 + mu0 - lambda0 * L_hi[i] - e,
-                            lambda0 + mu0 - lambda0 * L_lo[i] + e,
-                            J_lo[k] * J_lo[k],
-                            J_hi[k] * J_hi[k],
-                            f2_lo,
-                            f2_hi);
-            const double a = dJ_lo[k], b = dJ_hi[k];
-            const double s_hi = std::max(a * a, b * b);
-            const double s_lo =
-              (a <= 0. && b >= 0.) ? 0. : std::min(a * a, b * b);
-            double p_lo, p_hi, q_lo, q_hi;
-            multiply(f2_lo, f2_hi, s_lo, s_hi, p_lo, p_hi);
-            multiply(f1_lo, f1_hi, d2J_lo[k], d2J_hi[k], q_lo, q_hi);
-            lower += w[k] * (p_lo + q_lo);
-            upper += w[k] * (p_hi + q_hi);
-            magnitude += w[k] * (std::max(std::abs(p_lo), std::abs(p_hi)) +
-                                 std::max(std::abs(q_lo), std::abs(q_hi)));
-            slope_magnitude += w[k] *
-                               std::max(std::abs(f1_lo), std::abs(f1_hi)) *
-                               std::max(std::abs(a), std::abs(b));
-          }
+        double sums[4];
+        curvature_sums(lambda0,
+                       mu0,
+                       J_lo + begin,
+                       J_hi + begin,
+                       L_lo,
+                       L_hi,
+                       dJ_lo + begin,
+                       dJ_hi + begin,
+                       d2J_lo + begin,
+                       d2J_hi + begin,
+                       w + begin,
+                       m,
+                       sums);
+        lower += sums[0];
+        upper += sums[1];
+        magnitude += sums[2];
+        slope_magnitude += sums[3];
       }
     // Products, sums and the summation over the cells.
     const double margin = 8. * unit * magnitude;

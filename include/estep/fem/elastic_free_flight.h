@@ -76,17 +76,6 @@ namespace estep
     quadratic_part() const;
 
   private:
-    struct JacobianRanges;
-
-    /** Enclosures of J_e, J_e' and J_e'' over [m - r, m + r] for the cells
-     * begin, ..., begin + count - 1. */
-    void
-    enclose_jacobians(const double       m,
-                      const double       r,
-                      const unsigned int begin,
-                      const unsigned int count,
-                      JacobianRanges    &ranges) const;
-
     /** The second-order (Taylor) form about the centre @p m of [m - r, m +
      * r], from f and f' there and the enclosure of f''; empty if f'' is
      * unbounded there. */

@@ -22,11 +22,23 @@ namespace estep
    * D_m^{-1}. Row a of B is the reference gradient dN_{a+1}/dX of the shape
    * function of vertex a + 1, and dN_0/dX = -sum of the rows. The deformation
    * gradient of positions x is F = [x_1 - x_0 | x_2 - x_0 | x_3 - x_0] B.
+   *
+   * The per-cell arrays are padded to a whole number of batches of four cells
+   * (n_padded_cells() entries; see Lanes): the padding repeats the last cell
+   * with volume 0, so that it adds nothing to sums over cells.
    */
   struct P1CellData
   {
     /** Number of cells (tetrahedra). */
     unsigned int n_cells = 0;
+
+    /** The length of the per-cell arrays: n_cells rounded up to a multiple
+     * of 4. */
+    unsigned int
+    n_padded_cells() const
+    {
+      return (n_cells + 3) / 4 * 4;
+    }
 
     /** Number of points (vertices). */
     unsigned int n_points = 0;
