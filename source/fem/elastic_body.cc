@@ -257,25 +257,34 @@ namespace estep
               Lanes       P[9];
               for (unsigned int l = 0; l < 9; ++l)
                 P[l] = dfv * C[b][l] + cv * F[b][l];
+              // The forces on the four vertices of each cell: f_a = P grad
+              // N_a for a = 1, 2, 3, and f_0 = -(f_1 + f_2 + f_3).
+              Lanes force[4][3];
+              for (unsigned int i = 0; i < 3; ++i)
+                force[0][i] = lanes(0.);
               for (unsigned int a = 0; a < 3; ++a)
                 {
-                  const Lanes B0 = load_lanes(
-                                data.shape_gradient[3 * a].data() + e),
-                              B1 = load_lanes(
-                                data.shape_gradient[3 * a + 1].data() + e),
-                              B2 = load_lanes(
-                                data.shape_gradient[3 * a + 2].data() + e);
+                  Lanes B[3];
+                  for (unsigned int j = 0; j < 3; ++j)
+                    B[j] =
+                      load_lanes(data.shape_gradient[3 * a + j].data() + e);
                   for (unsigned int i = 0; i < 3; ++i)
                     {
-                      const Lanes h =
-                        P[3 * i] * B0 + P[3 * i + 1] * B1 + P[3 * i + 2] * B2;
-                      for (unsigned int k = 0; k < n_lanes; ++k)
-                        {
-                          y[3 * data.point[a + 1][e + k] + i] += h[k];
-                          y[3 * data.point[0][e + k] + i] -= h[k];
-                        }
+                      force[a + 1][i] = P[3 * i] * B[0] + P[3 * i + 1] * B[1] +
+                                        P[3 * i + 2] * B[2];
+                      force[0][i] -= force[a + 1][i];
                     }
                 }
+              // Scattered cell by cell (the cells of a batch may share
+              // vertices).
+              unsigned int dof[4][n_lanes];
+              for (unsigned int a = 0; a < 4; ++a)
+                for (unsigned int k = 0; k < n_lanes; ++k)
+                  dof[a][k] = 3 * data.point[a][e + k];
+              for (unsigned int k = 0; k < n_lanes; ++k)
+                for (unsigned int a = 0; a < 4; ++a)
+                  for (unsigned int i = 0; i < 3; ++i)
+                    y[dof[a][k] + i] += force[a][i][k];
             }
         }
     }

@@ -54,6 +54,22 @@ namespace estep
       // Newton aims half the tolerance short of the level, so that the point
       // it converges to is usually on the near side already.
       const double target = 0.5 * noise;
+      // The step from a point with values g, g' (g' > 0) to the model's
+      // crossing of -target: the root nearest 0 of g + target + g' t +
+      // kappa t^2 / 2 with kappa the centre of the enclosure's curvature
+      // (a plain Newton step where that is unknown or the model has no
+      // root).
+      const double kappa =
+        (std::isfinite(enclosure.curvature.lower) &&
+         std::isfinite(enclosure.curvature.upper)) ?
+          sign * 0.5 * (enclosure.curvature.lower + enclosure.curvature.upper) :
+          0.;
+      const auto model_step = [&](const double g, const double dg) {
+        const double c            = g + target;
+        const double discriminant = dg * dg - 2. * kappa * c;
+        return discriminant >= 0. ? -2. * c / (dg + std::sqrt(discriminant)) :
+                                    -c / dg;
+      };
       double       lo = a, hi = b;
       const double g_lo = sign * (fa - level), g_hi = sign * (fb - level);
       double       x             = (std::isfinite(g_hi) && g_hi > g_lo) ?
@@ -69,7 +85,7 @@ namespace estep
           if (gm == 0. || (gm < 0. && -gm <= noise))
             return m; // on the level, or within round-off on the near side
           (gm < 0. ? lo : hi) = m;
-          x = (dg > 0.) ? m - (gm + target) / dg : 0.5 * (lo + hi);
+          x = (dg > 0.) ? m + model_step(gm, dg) : 0.5 * (lo + hi);
         }
       for (unsigned int iteration = 0; iteration < 200; ++iteration)
         {
@@ -103,9 +119,8 @@ namespace estep
                 }
               return lo;
             }
-          double step = (gx.derivative > 0.) ?
-                          -(gx.value + target) / gx.derivative :
-                          newton;
+          double step =
+            (gx.derivative > 0.) ? model_step(gx.value, gx.derivative) : newton;
           if (!(x + step > lo && x + step < hi) ||
               std::abs(step) > 0.5 * previous_step)
             step = 0.5 * (lo + hi) - x; // bisect
@@ -134,8 +149,18 @@ namespace estep
     // flight's round-off, so that enclosures (widened by that round-off
     // themselves) can fit inside.
     const double tolerance = 4. * flight.value_tolerance();
-    const double f_zero    = flight.value(0.);
-    ++statistics.n_value_evaluations;
+    // f = +infinity where the configuration is inadmissible (beyond the
+    // flight's admissible limit); such intervals are never enclosed.
+    const auto value_at = [&](const double s) {
+      ++statistics.n_value_evaluations;
+      return flight.value(s);
+    };
+    // f(0): a flight that departs from a level starts where the previous one
+    // reached it, within round-off, and counts as sitting on it; any other
+    // is evaluated.
+    const double f_zero = departure_sign > 0 ? c0 :
+                          departure_sign < 0 ? c1 :
+                                               value_at(0.);
     // The level the flight sits on at s = 0, if any: the departure level, or
     // a level that f(0) lies within the band of.
     const double sitting_level =
@@ -152,13 +177,6 @@ namespace estep
     double       prefix_end = 0.;
     const double resolution_floor =
       std::max(query.first_window, std::numeric_limits<double>::min());
-
-    // f = +infinity where the configuration is inadmissible (beyond the
-    // flight's admissible limit); such intervals are never enclosed.
-    const auto value_at = [&](const double s) {
-      ++statistics.n_value_evaluations;
-      return flight.value(s);
-    };
 
     std::vector<PendingInterval> pending;
     double window_start = 0., window_length = std::min(query.first_window, end);

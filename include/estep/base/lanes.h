@@ -70,10 +70,10 @@ namespace estep
    * last, partial batch, the entries below n and @p fill in the other lanes.
    */
   ESTEP_LANE_INLINE Lanes
-  load_batch(const double      *p,
-             const std::size_t  i,
-             const std::size_t  n,
-             const double       fill)
+  load_batch(const double     *p,
+             const std::size_t i,
+             const std::size_t n,
+             const double      fill)
   {
     return i + n_lanes <= n ? load_lanes(p + i) :
                               load_lanes(p + i, n - i, fill);
