@@ -140,6 +140,47 @@ namespace estep
     }
 
     /**
+     * Bounds of log J over [J_lo[i], J_hi[i]] without logarithms, for i < n:
+     * L_lo[i] <= 1 - 1/J_lo[i] <= log J_lo[i] and L_hi[i] >= J_hi[i] - 1 >=
+     * log J_hi[i] (each widened by its rounding), which overestimate the
+     * range by at most about (J - 1)^2. Returns false, leaving the bounds
+     * unfinished, if some J lies farther than 1/16 from 1.
+     */
+    ESTEP_LANE_KERNEL bool
+    log_bounds_near_one(const double     *J_lo,
+                        const double     *J_hi,
+                        double           *L_lo,
+                        double           *L_hi,
+                        const std::size_t n)
+    {
+      Lanes distance = lanes(0.);
+      for (std::size_t i = 0; i < n; i += n_lanes)
+        {
+          const Lanes Jl = load_batch(J_lo, i, n, 1.),
+                      Jh = load_batch(J_hi, i, n, 1.);
+          distance       = max(distance, max(abs(Jl - 1.), abs(Jh - 1.)));
+          const Lanes r  = 1. / Jl;
+          // Rounding: 1 / J_lo and the subtraction, J_hi - 1 (exact for J_hi
+          // in [1/2, 2]); 4 units of the operands' magnitudes each.
+          const Lanes lower = (1. - r) - 4. * unit * (1. + r),
+                      upper = (Jh - 1.) + 4. * unit * (1. + Jh);
+          if (i + n_lanes <= n)
+            {
+              store_lanes(L_lo + i, lower);
+              store_lanes(L_hi + i, upper);
+            }
+          else
+            for (std::size_t k = 0; i + k < n; ++k)
+              {
+                L_lo[i + k] = lower[k];
+                L_hi[i + k] = upper[k];
+              }
+        }
+      return distance[0] <= 1. / 16. && distance[1] <= 1. / 16. &&
+             distance[2] <= 1. / 16. && distance[3] <= 1. / 16.;
+    }
+
+    /**
      * The sums over i < n of the curvature enclosure of
      * NeoHookean::enclose_volumetric_curvature_sum() (all J_lo > 0, L_lo and
      * L_hi their logarithms): lower, upper and magnitude in @p result, the
@@ -467,8 +508,13 @@ namespace estep
         for (std::size_t i = 0; i < m; ++i)
           if (!(J_lo[begin + i] > 0.))
             return {-infinity, infinity};
-        batch_log(J_lo + begin, L_lo, m);
-        batch_log(J_hi + begin, L_hi, m);
+        // log J enters f' and f'' next to mu and lambda + mu: near J = 1 its
+        // bounds without logarithms are as good.
+        if (!log_bounds_near_one(J_lo + begin, J_hi + begin, L_lo, L_hi, m))
+          {
+            batch_log(J_lo + begin, L_lo, m);
+            batch_log(J_hi + begin, L_hi, m);
+          }
         double sums[4];
         curvature_sums(lambda0,
                        mu0,

@@ -158,6 +158,78 @@ namespace
       std::isinf(material.sum_volumetric_energy(J.data(), w.data(), n)));
   }
 
+  // The curvature enclosure over boxes of J, J', J'' holds sampled sums of
+  // w (f''(J) J'^2 + f'(J) J''), near J = 1 (bounds of log J without
+  // logarithms) and far from it, with a partial last batch of four cells; it
+  // is about as tight as the material-independent default.
+  TEST(NeoHookean, CurvatureEnclosureHoldsSamples)
+  {
+    std::mt19937                           rng(5);
+    std::uniform_real_distribution<double> u(0., 1.);
+    for (const double spread : {1e-3, 0.05, 0.8})
+      for (const std::size_t n :
+           {std::size_t(1), std::size_t(7), std::size_t(258)})
+        {
+          std::vector<double> J_lo(n), J_hi(n), d_lo(n), d_hi(n), dd_lo(n),
+            dd_hi(n), w(n);
+          for (std::size_t i = 0; i < n; ++i)
+            {
+              const double centre = 1. + spread * (2. * u(rng) - 1.),
+                           width  = 1e-3 * spread * u(rng);
+              J_lo[i]             = centre - width;
+              J_hi[i]             = centre + width;
+              d_lo[i]             = 2. * u(rng) - 1.5;
+              d_hi[i]             = d_lo[i] + u(rng);
+              dd_lo[i]            = 2. * u(rng) - 1.;
+              dd_hi[i]            = dd_lo[i] + 0.1 * u(rng);
+              w[i]                = 0.01 * u(rng);
+            }
+          double         slope = 0., slope_default = 0.;
+          const Interval c =
+            material.enclose_volumetric_curvature_sum(J_lo.data(),
+                                                      J_hi.data(),
+                                                      d_lo.data(),
+                                                      d_hi.data(),
+                                                      dd_lo.data(),
+                                                      dd_hi.data(),
+                                                      w.data(),
+                                                      n,
+                                                      slope);
+          const Interval c_default =
+            material.estep::Material::enclose_volumetric_curvature_sum(
+              J_lo.data(),
+              J_hi.data(),
+              d_lo.data(),
+              d_hi.data(),
+              dd_lo.data(),
+              dd_hi.data(),
+              w.data(),
+              n,
+              slope_default);
+          EXPECT_LE(c.width(), 1.01 * c_default.width() + 1e-15)
+            << "spread " << spread << ", n " << n;
+          for (unsigned int sample = 0; sample < 200; ++sample)
+            {
+              double sum = 0., slope_sum = 0.;
+              for (std::size_t i = 0; i < n; ++i)
+                {
+                  const double t = sample == 0 ? 0. : sample == 1 ? 1. : u(rng);
+                  const double Ji = J_lo[i] + t * (J_hi[i] - J_lo[i]);
+                  const double d  = d_lo[i] + u(rng) * (d_hi[i] - d_lo[i]);
+                  const double dd = dd_lo[i] + u(rng) * (dd_hi[i] - dd_lo[i]);
+                  sum +=
+                    w[i] * (material.volumetric_second_derivative(Ji) * d * d +
+                            material.volumetric_derivative(Ji) * dd);
+                  slope_sum +=
+                    w[i] * std::abs(material.volumetric_derivative(Ji) * d);
+                }
+              EXPECT_TRUE(c.contains(sum))
+                << "spread " << spread << ", n " << n;
+              EXPECT_LE(slope_sum, slope * (1. + 1e-12));
+            }
+        }
+  }
+
   TEST(NeoHookean, RejectsBadConstants)
   {
     EXPECT_THROW(NeoHookean(0.01, 0.), std::exception);
