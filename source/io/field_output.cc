@@ -9,6 +9,7 @@
 #include <estep/fem/elastic_body.h>
 #include <estep/io/field_output.h>
 #include <estep/io/json_writer.h>
+#include <estep/io/vtu_file.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -30,14 +31,26 @@ namespace estep
       , interval(interval)
       , next_time(start_time)
       , mapping(dealii::FE_SimplexP<3>(1))
-    {}
+    {
+      if (format == Format::vtu)
+        {
+          const P1CellData         &cells = body.cell_data();
+          std::vector<unsigned int> tetrahedra(4 * std::size_t(cells.n_cells));
+          for (unsigned int e = 0; e < cells.n_cells; ++e)
+            for (unsigned int a = 0; a < 4; ++a)
+              tetrahedra[4 * e + a] = cells.point[a][e];
+          vtu = std::make_unique<VtuFile>(cells.reference_position, tetrahedra);
+        }
+    }
 
-    const ElasticBody                          &body;
-    const std::filesystem::path                 directory;
-    const Format                                format;
-    const double                                interval;
-    double                                      next_time;
-    const dealii::MappingFE<3>                  mapping;
+    const ElasticBody          &body;
+    const std::filesystem::path directory;
+    const Format                format;
+    const double                interval;
+    double                      next_time;
+    const dealii::MappingFE<3>  mapping;
+    /** The mesh, encoded once (format vtu). */
+    std::unique_ptr<VtuFile>                    vtu;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<dealii::XDMFEntry>              xdmf_entries;
   };
@@ -96,29 +109,54 @@ namespace estep
   void
   FieldOutput::write(const Snapshot &snapshot)
   {
-    Implementation              &self      = *implementation;
-    const ElasticBody           &body      = self.body;
-    const dealii::Vector<double> reference = body.reference_configuration();
+    Implementation    &self  = *implementation;
+    const ElasticBody &body  = self.body;
+    const P1CellData  &cells = body.cell_data();
 
-    dealii::Vector<double> displacement(snapshot.q);
-    displacement -= reference;
-    dealii::Vector<double> velocity(snapshot.v);
-    std::vector<double>    J, W;
+    std::vector<double> displacement(snapshot.q.begin(), snapshot.q.end()),
+      velocity(snapshot.v.begin(), snapshot.v.end());
+    for (unsigned int k = 0; k < displacement.size(); ++k)
+      displacement[k] -= cells.reference_position[k];
+    std::vector<double> J, W;
     body.cell_fields(snapshot.q, J, W);
-    dealii::Vector<double> cell_J(J.begin(), J.end()),
-      cell_W(W.begin(), W.end());
 
+    const unsigned int n = n_snapshots();
+    char               name[64];
+    if (self.format == Format::vtu)
+      {
+        std::snprintf(name, sizeof(name), "fields/solution-%05u.vtu", n);
+        std::ostringstream vtu;
+        self.vtu->write(vtu,
+                        snapshot.t,
+                        n,
+                        {{"displacement", 3, &displacement},
+                         {"velocity", 3, &velocity}},
+                        {{"J", 1, &J}, {"strain_energy_density", 1, &W}});
+        write_file_atomically((self.directory / name).string(), vtu.str());
+        self.pvd_records.emplace_back(snapshot.t, name);
+        std::ostringstream pvd;
+        dealii::DataOutBase::write_pvd_record(pvd, self.pvd_records);
+        write_file_atomically((self.directory / "solution.pvd").string(),
+                              pvd.str());
+        return;
+      }
+
+    // HDF5/XDMF through deal.II's DataOut.
+    dealii::Vector<double> displacement_vector(displacement.begin(),
+                                               displacement.end()),
+      velocity_vector(velocity.begin(), velocity.end()),
+      cell_J(J.begin(), J.end()), cell_W(W.begin(), W.end());
     dealii::DataOut<3> data_out;
     data_out.attach_dof_handler(body.dof_handler());
     const std::vector<
       dealii::DataComponentInterpretation::DataComponentInterpretation>
       vector_field(
         3, dealii::DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(displacement,
+    data_out.add_data_vector(displacement_vector,
                              std::vector<std::string>(3, "displacement"),
                              dealii::DataOut<3>::type_dof_data,
                              vector_field);
-    data_out.add_data_vector(velocity,
+    data_out.add_data_vector(velocity_vector,
                              std::vector<std::string>(3, "velocity"),
                              dealii::DataOut<3>::type_dof_data,
                              vector_field);
@@ -127,45 +165,17 @@ namespace estep
                              "strain_energy_density",
                              dealii::DataOut<3>::type_cell_data);
     data_out.build_patches(self.mapping, 1);
-
-    const unsigned int n = n_snapshots();
-    char               name[64];
-    if (self.format == Format::vtu)
-      {
-        std::snprintf(name, sizeof(name), "fields/solution-%05u.vtu", n);
-        dealii::DataOutBase::VtkFlags flags;
-        flags.time  = snapshot.t;
-        flags.cycle = n;
-        // deal.II's default, best compression, costs ten times the rest of a
-        // snapshot; best speed writes files about a third larger.
-        flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
-        data_out.set_flags(flags);
-        {
-          std::ofstream out(self.directory / name);
-          data_out.write_vtu(out);
-        }
-        self.pvd_records.emplace_back(snapshot.t, name);
-        std::ostringstream pvd;
-        dealii::DataOutBase::write_pvd_record(pvd, self.pvd_records);
-        write_file_atomically((self.directory / "solution.pvd").string(),
-                              pvd.str());
-      }
-    else
-      {
-        std::snprintf(name, sizeof(name), "fields/solution-%05u.h5", n);
-        dealii::DataOutBase::DataOutFilter filter(
-          dealii::DataOutBase::DataOutFilterFlags(true, true));
-        data_out.write_filtered_data(filter);
-        data_out.write_hdf5_parallel(filter,
-                                     (self.directory / name).string(),
-                                     MPI_COMM_SELF);
-        self.xdmf_entries.push_back(
-          data_out.create_xdmf_entry(filter, name, snapshot.t, MPI_COMM_SELF));
-        const std::string xdmf = (self.directory / "solution.xdmf").string();
-        data_out.write_xdmf_file(self.xdmf_entries,
-                                 xdmf + ".part",
+    std::snprintf(name, sizeof(name), "fields/solution-%05u.h5", n);
+    dealii::DataOutBase::DataOutFilter filter(
+      dealii::DataOutBase::DataOutFilterFlags(true, true));
+    data_out.write_filtered_data(filter);
+    data_out.write_hdf5_parallel(filter,
+                                 (self.directory / name).string(),
                                  MPI_COMM_SELF);
-        std::filesystem::rename(xdmf + ".part", xdmf);
-      }
+    self.xdmf_entries.push_back(
+      data_out.create_xdmf_entry(filter, name, snapshot.t, MPI_COMM_SELF));
+    const std::string xdmf = (self.directory / "solution.xdmf").string();
+    data_out.write_xdmf_file(self.xdmf_entries, xdmf + ".part", MPI_COMM_SELF);
+    std::filesystem::rename(xdmf + ".part", xdmf);
   }
 } // namespace estep

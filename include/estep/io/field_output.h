@@ -17,9 +17,10 @@ namespace estep
    * integrator): the displacement and the velocity (vertex fields), the volume
    * ratio J and the strain energy density (cell fields).
    *
-   * Format "vtu": one fields/solution-NNNNN.vtu per snapshot and the time
-   * series solution.pvd (rewritten atomically after each snapshot, so it is
-   * valid while the run goes on). Format "hdf5": fields/solution-NNNNN.h5 with
+   * Format "vtu": one fields/solution-NNNNN.vtu per snapshot (VtuFile: the
+   * mesh's own vertices and cells, compressed) and the time series
+   * solution.pvd (both written atomically, so the series is valid while the
+   * run goes on). Format "hdf5": fields/solution-NNNNN.h5 with
    * the time series solution.xdmf (needs MPI to be initialised, which the estep
    * command does when this format is chosen).
    */

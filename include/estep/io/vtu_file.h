@@ -1,0 +1,68 @@
+#ifndef estep_io_vtu_file_h
+#define estep_io_vtu_file_h
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  /**
+   * VTK XML unstructured-grid files (.vtu, read by ParaView and VisIt) of one
+   * tetrahedral mesh with shared vertices, written straight from arrays.
+   *
+   * Every array is stored as zlib-compressed binary (VTK's
+   * vtkZLibDataCompressor, one block, UInt32 header, inline base64), the
+   * fields and points as Float32 like deal.II's DataOut. Unlike DataOut, which
+   * writes each cell as its own patch with four private vertices, vertex
+   * fields are stored once per vertex and cell fields once per cell: for the
+   * seed cube a snapshot holds 2,969 points instead of 49,152. The points and
+   * cells do not change between snapshots and are encoded once, in the
+   * constructor.
+   */
+  class VtuFile
+  {
+  public:
+    /** A field: @p n_components values per point or cell, point- or
+     * cell-major. */
+    struct Field
+    {
+      std::string                name;
+      unsigned int               n_components;
+      const std::vector<double> *values;
+    };
+
+    /**
+     * The mesh: @p points holds x, y, z of each point; @p tetrahedra the four
+     * point indices of each cell.
+     */
+    VtuFile(const std::vector<double>       &points,
+            const std::vector<unsigned int> &tetrahedra);
+
+    /**
+     * Writes one file: the mesh with the given point and cell fields, and the
+     * time and cycle as field data (TIME, CYCLE).
+     */
+    void
+    write(std::ostream             &out,
+          const double              time,
+          const unsigned int        cycle,
+          const std::vector<Field> &point_fields,
+          const std::vector<Field> &cell_fields) const;
+
+    /** The encoding of a data array: zlib (level 1) and base64, with VTK's
+     * block header. */
+    static std::string
+    encode(const void *data, const std::size_t n_bytes);
+
+  private:
+    unsigned int n_points;
+    unsigned int n_cells;
+    std::string  encoded_points;
+    std::string  encoded_connectivity;
+    std::string  encoded_offsets;
+    std::string  encoded_types;
+  };
+} // namespace estep
+
+#endif

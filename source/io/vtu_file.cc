@@ -1,0 +1,189 @@
+#include <estep/io/vtu_file.h>
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <stdexcept>
+
+namespace estep
+{
+  namespace
+  {
+    /** Appends the base64 encoding (RFC 4648, with padding) of @p n bytes. */
+    void
+    append_base64(const unsigned char *bytes,
+                  const std::size_t    n,
+                  std::string         &out)
+    {
+      static const char alphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      out.reserve(out.size() + 4 * ((n + 2) / 3));
+      std::size_t i = 0;
+      for (; i + 3 <= n; i += 3)
+        {
+          const std::uint32_t group =
+            (std::uint32_t(bytes[i]) << 16) |
+            (std::uint32_t(bytes[i + 1]) << 8) | bytes[i + 2];
+          out += alphabet[(group >> 18) & 63];
+          out += alphabet[(group >> 12) & 63];
+          out += alphabet[(group >> 6) & 63];
+          out += alphabet[group & 63];
+        }
+      if (i < n)
+        {
+          const std::uint32_t group =
+            (std::uint32_t(bytes[i]) << 16) |
+            (i + 1 < n ? std::uint32_t(bytes[i + 1]) << 8 : 0);
+          out += alphabet[(group >> 18) & 63];
+          out += alphabet[(group >> 12) & 63];
+          out += (i + 1 < n) ? alphabet[(group >> 6) & 63] : '=';
+          out += '=';
+        }
+    }
+
+    /** The values as Float32, converted. */
+    std::vector<float>
+    as_float(const std::vector<double> &values)
+    {
+      return std::vector<float>(values.begin(), values.end());
+    }
+
+    void
+    write_array(std::ostream      &out,
+                const char        *type,
+                const std::string &name,
+                const unsigned int n_components,
+                const std::string &encoded)
+    {
+      out << "<DataArray type=\"" << type << "\"";
+      if (!name.empty())
+        out << " Name=\"" << name << "\"";
+      if (n_components > 1)
+        out << " NumberOfComponents=\"" << n_components << "\"";
+      out << " format=\"binary\">\n" << encoded << "\n</DataArray>\n";
+    }
+
+    void
+    write_fields(std::ostream                       &out,
+                 const char                         *section,
+                 const std::vector<VtuFile::Field> &fields,
+                 const unsigned int                  n_entities)
+    {
+      out << "<" << section << ">\n";
+      for (const auto &field : fields)
+        {
+          if (field.values == nullptr ||
+              field.values->size() != std::size_t(n_entities) * field.n_components)
+            throw std::invalid_argument("VtuFile: the field <" + field.name +
+                                        "> has the wrong number of values.");
+          const std::vector<float> values = as_float(*field.values);
+          write_array(out,
+                      "Float32",
+                      field.name,
+                      field.n_components,
+                      VtuFile::encode(values.data(),
+                                      values.size() * sizeof(float)));
+        }
+      out << "</" << section << ">\n";
+    }
+  } // namespace
+
+
+
+  std::string
+  VtuFile::encode(const void *data, const std::size_t n_bytes)
+  {
+    if (n_bytes > 0xffffffffu)
+      throw std::length_error("VtuFile: a data array exceeds 4 GB.");
+    uLongf                     compressed_size = compressBound(n_bytes);
+    std::vector<unsigned char> compressed(compressed_size);
+    if (compress2(compressed.data(),
+                  &compressed_size,
+                  static_cast<const Bytef *>(data),
+                  n_bytes,
+                  Z_BEST_SPEED) != Z_OK)
+      throw std::runtime_error("VtuFile: zlib compression failed.");
+    // VTK's header of compressed data: the number of blocks, the size of a
+    // block, the size of the last block and the compressed size of each
+    // block; it is encoded separately from the data.
+    const std::uint32_t header[4] = {1u,
+                                     std::uint32_t(n_bytes),
+                                     std::uint32_t(n_bytes),
+                                     std::uint32_t(compressed_size)};
+    std::string         encoded;
+    append_base64(reinterpret_cast<const unsigned char *>(header),
+                  sizeof(header),
+                  encoded);
+    append_base64(compressed.data(), compressed_size, encoded);
+    return encoded;
+  }
+
+
+
+  VtuFile::VtuFile(const std::vector<double>       &points,
+                   const std::vector<unsigned int> &tetrahedra)
+    : n_points(points.size() / 3)
+    , n_cells(tetrahedra.size() / 4)
+  {
+    if (points.size() % 3 != 0 || tetrahedra.size() % 4 != 0)
+      throw std::invalid_argument(
+        "VtuFile: points need 3 coordinates, tetrahedra 4 points each.");
+    for (const unsigned int p : tetrahedra)
+      if (p >= n_points)
+        throw std::invalid_argument(
+          "VtuFile: a tetrahedron refers to a point that does not exist.");
+    const std::vector<float> xyz = as_float(points);
+    encoded_points = encode(xyz.data(), xyz.size() * sizeof(float));
+    const std::vector<std::int32_t> connectivity(tetrahedra.begin(),
+                                                 tetrahedra.end());
+    encoded_connectivity = encode(connectivity.data(),
+                                  connectivity.size() * sizeof(std::int32_t));
+    std::vector<std::int32_t> offsets(n_cells);
+    for (unsigned int e = 0; e < n_cells; ++e)
+      offsets[e] = 4 * (e + 1);
+    encoded_offsets =
+      encode(offsets.data(), offsets.size() * sizeof(std::int32_t));
+    const std::vector<std::uint8_t> types(n_cells, 10); // VTK_TETRA
+    encoded_types = encode(types.data(), types.size());
+  }
+
+
+
+  void
+  VtuFile::write(std::ostream             &out,
+                 const double              time,
+                 const unsigned int        cycle,
+                 const std::vector<Field> &point_fields,
+                 const std::vector<Field> &cell_fields) const
+  {
+    out.precision(17);
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\""
+        << (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__ ? "BigEndian" :
+                                                     "LittleEndian")
+        << "\" header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n"
+        << "<UnstructuredGrid>\n"
+        << "<FieldData>\n"
+        << "<DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" "
+           "format=\"ascii\">"
+        << time << "</DataArray>\n"
+        << "<DataArray type=\"Int32\" Name=\"CYCLE\" NumberOfTuples=\"1\" "
+           "format=\"ascii\">"
+        << cycle << "</DataArray>\n"
+        << "</FieldData>\n"
+        << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\""
+        << n_cells << "\">\n"
+        << "<Points>\n";
+    write_array(out, "Float32", "", 3, encoded_points);
+    out << "</Points>\n<Cells>\n";
+    write_array(out, "Int32", "connectivity", 1, encoded_connectivity);
+    write_array(out, "Int32", "offsets", 1, encoded_offsets);
+    write_array(out, "UInt8", "types", 1, encoded_types);
+    out << "</Cells>\n";
+    write_fields(out, "PointData", point_fields, n_points);
+    write_fields(out, "CellData", cell_fields, n_cells);
+    out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    if (!out)
+      throw std::runtime_error("VtuFile: writing the file failed.");
+  }
+} // namespace estep
