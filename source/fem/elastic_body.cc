@@ -201,8 +201,9 @@ namespace estep
   namespace
   {
     /**
-     * J_e = det F_e of every cell (padding included) into @p J; returns
-     * sum_e |Omega_e| (|F_e|^2 - 3).
+     * J_e = det F_e of every cell (padding included) into @p J for positions
+     * @p x (padded, see load_triples()); returns sum_e |Omega_e| (|F_e|^2 -
+     * 3).
      */
     ESTEP_LANE_KERNEL double
     jacobians_and_square_sum(const P1CellData &data, const double *x, double *J)
@@ -221,7 +222,8 @@ namespace estep
     }
 
     /**
-     * Adds the nodal forces |Omega_e| P_e grad N_a of every cell to @p y, with
+     * Adds the nodal forces |Omega_e| P_e grad N_a of every cell to @p y (with
+     * one writable double after its last point, see add_triples()), with
      * P = f'(J) cof F + c F, in chunks of cells: F and cof F stay in L1
      * between the determinant pass and the assembly pass, and f'(J) is one
      * batch call of the material per chunk.
@@ -275,16 +277,10 @@ namespace estep
                       force[0][i] -= force[a + 1][i];
                     }
                 }
-              // Scattered cell by cell (the cells of a batch may share
+              // Added cell by cell (the cells of a batch may share
               // vertices).
-              unsigned int dof[4][n_lanes];
               for (unsigned int a = 0; a < 4; ++a)
-                for (unsigned int k = 0; k < n_lanes; ++k)
-                  dof[a][k] = 3 * data.point[a][e + k];
-              for (unsigned int k = 0; k < n_lanes; ++k)
-                for (unsigned int a = 0; a < 4; ++a)
-                  for (unsigned int i = 0; i < 3; ++i)
-                    y[dof[a][k] + i] += force[a][i][k];
+                add_triples(y, data.point[a].data() + e, force[a]);
             }
         }
     }
@@ -294,8 +290,10 @@ namespace estep
   ElasticBody::energy(const Vector &q) const
   {
     AssertDimension(q.size(), n_dofs());
-    const double square =
-      jacobians_and_square_sum(data, q.data(), scratch_J.data());
+    internal::copy_padded(q.data(), q.size(), scratch_positions);
+    const double square = jacobians_and_square_sum(data,
+                                                   scratch_positions.data(),
+                                                   scratch_J.data());
     const double volumetric =
       body_material->sum_volumetric_energy(scratch_J.data(),
                                            data.volume.data(),
@@ -312,8 +310,14 @@ namespace estep
   ElasticBody::gradient(const Vector &q, Vector &g) const
   {
     AssertDimension(q.size(), n_dofs());
-    g.reinit(n_dofs());
-    assemble_gradient(data, *body_material, q.data(), g.data());
+    internal::copy_padded(q.data(), q.size(), scratch_positions);
+    scratch_forces.assign(q.size() + 1, 0.);
+    assemble_gradient(data,
+                      *body_material,
+                      scratch_positions.data(),
+                      scratch_forces.data());
+    g.reinit(n_dofs(), true);
+    std::copy(scratch_forces.begin(), scratch_forces.end() - 1, g.begin());
   }
 
   std::unique_ptr<FreeFlight>

@@ -174,7 +174,8 @@ namespace estep
     /**
      * The cubic coefficients of J_e(s) of every cell (padding included) and
      * sums[] = sum_e |Omega_e| (|F_e|^2 - 3), sum_e |Omega_e| F_e : G_e and
-     * sum_e |Omega_e| |G_e|^2, four cells at a time.
+     * sum_e |Omega_e| |G_e|^2, four cells at a time (q and v padded, see
+     * load_triples()).
      */
     ESTEP_LANE_KERNEL void
     build_cubics(const P1CellData &d,
@@ -250,8 +251,12 @@ namespace estep
     c2      = c1 + n_padded;
     c3      = c2 + n_padded;
     scratch = c3 + n_padded;
+    std::vector<double> padded_q, padded_v;
+    internal::copy_padded(q.data(), q.size(), padded_q);
+    internal::copy_padded(v.data(), v.size(), padded_v);
     double sums[3];
-    build_cubics(body.cell_data(), q.data(), v.data(), c0, c1, c2, c3, sums);
+    build_cubics(
+      body.cell_data(), padded_q.data(), padded_v.data(), c0, c1, c2, c3, sums);
     const double    FF = sums[0], FG = sums[1], GG = sums[2];
     const Material &material = body.material();
     const double    c        = material.quadratic_modulus();

@@ -6,6 +6,9 @@
 #include <estep/base/lanes.h>
 #include <estep/fem/p1_cell_data.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace estep
 {
   namespace internal
@@ -37,7 +40,8 @@ namespace estep
 
     /**
      * F of the four cells @p e, ..., @p e + 3 (e a multiple of 4; the cell
-     * arrays are padded to whole batches), one Lanes per entry.
+     * arrays are padded to whole batches), one Lanes per entry. @p x must have
+     * one readable double after its last point (see load_triples()).
      */
     ESTEP_LANE_INLINE void
     deformation_gradient(const double      *x,
@@ -48,19 +52,30 @@ namespace estep
       Lanes B[9];
       for (unsigned int k = 0; k < 9; ++k)
         B[k] = load_lanes(d.shape_gradient[k].data() + e);
-      const unsigned int *p0 = d.point[0].data() + e,
-                         *p1 = d.point[1].data() + e,
-                         *p2 = d.point[2].data() + e,
-                         *p3 = d.point[3].data() + e;
+      Lanes x0[3], x1[3], x2[3], x3[3];
+      load_triples(x, d.point[0].data() + e, x0);
+      load_triples(x, d.point[1].data() + e, x1);
+      load_triples(x, d.point[2].data() + e, x2);
+      load_triples(x, d.point[3].data() + e, x3);
       for (unsigned int i = 0; i < 3; ++i)
         {
-          const Lanes x0 = gather_lanes(x, p0, 3, i);
-          const Lanes d1 = gather_lanes(x, p1, 3, i) - x0,
-                      d2 = gather_lanes(x, p2, 3, i) - x0,
-                      d3 = gather_lanes(x, p3, 3, i) - x0;
+          const Lanes d1 = x1[i] - x0[i], d2 = x2[i] - x0[i],
+                      d3 = x3[i] - x0[i];
           for (unsigned int j = 0; j < 3; ++j)
             F[3 * i + j] = d1 * B[j] + d2 * B[3 + j] + d3 * B[6 + j];
         }
+    }
+
+    /**
+     * A copy of point-major values with one more entry (zero) at the end, for
+     * the lane kernels' loads of four doubles per point.
+     */
+    inline void
+    copy_padded(const double *x, const std::size_t n, std::vector<double> &copy)
+    {
+      copy.resize(n + 1);
+      std::copy(x, x + n, copy.begin());
+      copy[n] = 0.;
     }
 
     /** Cofactor matrix C = d det F / dF (row-major); T is double or Lanes. */

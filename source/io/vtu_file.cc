@@ -21,9 +21,9 @@ namespace estep
       std::size_t i = 0;
       for (; i + 3 <= n; i += 3)
         {
-          const std::uint32_t group =
-            (std::uint32_t(bytes[i]) << 16) |
-            (std::uint32_t(bytes[i + 1]) << 8) | bytes[i + 2];
+          const std::uint32_t group = (std::uint32_t(bytes[i]) << 16) |
+                                      (std::uint32_t(bytes[i + 1]) << 8) |
+                                      bytes[i + 2];
           out += alphabet[(group >> 18) & 63];
           out += alphabet[(group >> 12) & 63];
           out += alphabet[(group >> 6) & 63];
@@ -64,16 +64,17 @@ namespace estep
     }
 
     void
-    write_fields(std::ostream                       &out,
-                 const char                         *section,
+    write_fields(std::ostream                      &out,
+                 const char                        *section,
                  const std::vector<VtuFile::Field> &fields,
-                 const unsigned int                  n_entities)
+                 const unsigned int                 n_entities)
     {
       out << "<" << section << ">\n";
       for (const auto &field : fields)
         {
           if (field.values == nullptr ||
-              field.values->size() != std::size_t(n_entities) * field.n_components)
+              field.values->size() !=
+                std::size_t(n_entities) * field.n_components)
             throw std::invalid_argument("VtuFile: the field <" + field.name +
                                         "> has the wrong number of values.");
           const std::vector<float> values = as_float(*field.values);
@@ -136,8 +137,8 @@ namespace estep
     encoded_points = encode(xyz.data(), xyz.size() * sizeof(float));
     const std::vector<std::int32_t> connectivity(tetrahedra.begin(),
                                                  tetrahedra.end());
-    encoded_connectivity = encode(connectivity.data(),
-                                  connectivity.size() * sizeof(std::int32_t));
+    encoded_connectivity =
+      encode(connectivity.data(), connectivity.size() * sizeof(std::int32_t));
     std::vector<std::int32_t> offsets(n_cells);
     for (unsigned int e = 0; e < n_cells; ++e)
       offsets[e] = 4 * (e + 1);

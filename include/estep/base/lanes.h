@@ -86,17 +86,54 @@ namespace estep
     std::memcpy(p, &x, sizeof x);
   }
 
-  /** x[i] = base[stride * index[i] + offset] for the four lanes. */
-  ESTEP_LANE_INLINE Lanes
-  gather_lanes(const double       *base,
-               const unsigned int *index,
-               const unsigned int  stride,
-               const unsigned int  offset)
+  /** Lane indices of __builtin_shuffle for Lanes. */
+  typedef long long LaneIndex
+    __attribute__((vector_size(4 * sizeof(long long))));
+
+  /**
+   * The triples x[3 index[k] + c], c = 0, 1, 2, of four entries k as three
+   * Lanes (xyz[c][k]), from one load of four doubles per entry and a
+   * transposition: @p x must have one readable double after its last triple.
+   */
+  ESTEP_LANE_INLINE void
+  load_triples(const double *x, const unsigned int *index, Lanes *xyz)
   {
-    return Lanes{base[stride * index[0] + offset],
-                 base[stride * index[1] + offset],
-                 base[stride * index[2] + offset],
-                 base[stride * index[3] + offset]};
+    const Lanes r0 = load_lanes(x + 3 * index[0]),
+                r1 = load_lanes(x + 3 * index[1]),
+                r2 = load_lanes(x + 3 * index[2]),
+                r3 = load_lanes(x + 3 * index[3]);
+    const Lanes t0 = __builtin_shuffle(r0, r1, LaneIndex{0, 4, 2, 6}),
+                t1 = __builtin_shuffle(r0, r1, LaneIndex{1, 5, 3, 7}),
+                t2 = __builtin_shuffle(r2, r3, LaneIndex{0, 4, 2, 6}),
+                t3 = __builtin_shuffle(r2, r3, LaneIndex{1, 5, 3, 7});
+    xyz[0]         = __builtin_shuffle(t0, t2, LaneIndex{0, 1, 4, 5});
+    xyz[1]         = __builtin_shuffle(t1, t3, LaneIndex{0, 1, 4, 5});
+    xyz[2]         = __builtin_shuffle(t0, t2, LaneIndex{2, 3, 6, 7});
+  }
+
+  /**
+   * y[3 index[k] + c] += xyz[c][k] for the four entries k in turn (so repeated
+   * indices accumulate), by a transposition and one addition of four doubles
+   * per entry (the fourth adds 0): @p y must have one writable double after
+   * its last triple.
+   */
+  ESTEP_LANE_INLINE void
+  add_triples(double *y, const unsigned int *index, const Lanes *xyz)
+  {
+    const Lanes zero = lanes(0.);
+    const Lanes t0   = __builtin_shuffle(xyz[0], xyz[1], LaneIndex{0, 4, 1, 5}),
+                t1   = __builtin_shuffle(xyz[0], xyz[1], LaneIndex{2, 6, 3, 7}),
+                t2   = __builtin_shuffle(xyz[2], zero, LaneIndex{0, 4, 1, 5}),
+                t3   = __builtin_shuffle(xyz[2], zero, LaneIndex{2, 6, 3, 7});
+    const Lanes rows[4] = {__builtin_shuffle(t0, t2, LaneIndex{0, 1, 4, 5}),
+                           __builtin_shuffle(t0, t2, LaneIndex{2, 3, 6, 7}),
+                           __builtin_shuffle(t1, t3, LaneIndex{0, 1, 4, 5}),
+                           __builtin_shuffle(t1, t3, LaneIndex{2, 3, 6, 7})};
+    for (unsigned int k = 0; k < n_lanes; ++k)
+      {
+        double *row = y + 3 * index[k];
+        store_lanes(row, load_lanes(row) + rows[k]);
+      }
   }
 
   /** |x| per lane. */

@@ -188,6 +188,9 @@ namespace estep
     Vector                          inv_mass;
     /** Scratch of energy(): J per cell. */
     mutable std::vector<double> scratch_J;
+    /** Positions and forces with one padding entry (the lane kernels read
+     * and write four doubles per point). */
+    mutable std::vector<double> scratch_positions, scratch_forces;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };
