@@ -11,17 +11,20 @@
  * time in them (one AVX2 register, or two SSE2 registers).
  *
  * Lanes is the vector extension of GCC and Clang, so one source compiles for
- * every x86-64 level. A function marked ESTEP_LANE_KERNEL is compiled twice,
- * for x86-64-v3 (AVX2, FMA) and for the baseline, and the dynamic loader picks
- * the version the CPU runs: the binaries stay portable and use the wide
- * registers where they exist. Results of the two versions may differ in the
- * last bits (fused multiply-adds); the kernels' rounding bounds hold for both.
+ * every x86-64 level. A function marked ESTEP_LANE_KERNEL is compiled three
+ * times, for x86-64-v4 (AVX-512: the same four lanes, but 32 registers instead
+ * of 16, so that the matrices a cell kernel keeps live spill far less),
+ * x86-64-v3 (AVX2, FMA) and the baseline, and the dynamic loader picks the
+ * version the CPU runs: the binaries stay portable and use what the processor
+ * has. Results of the versions may differ in the last bits (fused
+ * multiply-adds); the kernels' rounding bounds hold for all.
  */
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
   defined(__linux__)
 #  define ESTEP_LANE_KERNEL \
-    __attribute__((target_clones("arch=x86-64-v3", "default")))
+    __attribute__((         \
+      target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #  define ESTEP_LANE_KERNEL
 #endif
