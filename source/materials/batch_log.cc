@@ -11,6 +11,7 @@
 // are vectorised.
 extern "C" __m128d _ZGVbN2v_log(__m128d);
 extern "C" __m256d _ZGVdN4v_log(__m256d);
+extern "C" __m512d _ZGVeN8v_log(__m512d);
 #endif
 
 namespace estep
@@ -28,6 +29,16 @@ namespace estep
         y[i] = std::log(x[i]);
     }
 
+    __attribute__((target("avx512f"))) void
+    batch_log_avx512(const double *x, double *y, const std::size_t n)
+    {
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+        _mm512_storeu_pd(y + i, _ZGVeN8v_log(_mm512_loadu_pd(x + i)));
+      for (; i < n; ++i)
+        y[i] = std::log(x[i]);
+    }
+
     void
     batch_log_sse2(const double *x, double *y, const std::size_t n)
     {
@@ -36,6 +47,13 @@ namespace estep
         _mm_storeu_pd(y + i, _ZGVbN2v_log(_mm_loadu_pd(x + i)));
       for (; i < n; ++i)
         y[i] = std::log(x[i]);
+    }
+
+    bool
+    have_avx512()
+    {
+      static const bool avx512 = __builtin_cpu_supports("avx512f");
+      return avx512;
     }
 
     bool
@@ -52,7 +70,9 @@ namespace estep
   batch_log(const double *x, double *y, const std::size_t n)
   {
 #ifdef ESTEP_HAVE_LIBMVEC
-    if (have_avx2())
+    if (have_avx512())
+      batch_log_avx512(x, y, n);
+    else if (have_avx2())
       batch_log_avx2(x, y, n);
     else
       batch_log_sse2(x, y, n);
@@ -72,7 +92,9 @@ namespace estep
   batch_log_path()
   {
 #ifdef ESTEP_HAVE_LIBMVEC
-    return have_avx2() ? "avx2 libmvec" : "sse2 libmvec";
+    return have_avx512() ? "avx512 libmvec" :
+           have_avx2()   ? "avx2 libmvec" :
+                           "sse2 libmvec";
 #else
     return "scalar";
 #endif

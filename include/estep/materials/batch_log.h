@@ -8,8 +8,9 @@ namespace estep
   /**
    * y[i] = log(x[i]) for i < n, the natural logarithm of many numbers at once.
    *
-   * On x86-64 this calls glibc's vector logarithm (libmvec, 4 lanes with AVX2
-   * when the CPU has it, 2 lanes otherwise); elsewhere it loops over std::log.
+   * On x86-64 this calls glibc's vector logarithm (libmvec: 8 lanes with
+   * AVX-512, 4 with AVX2, 2 otherwise, as the CPU has them); elsewhere it loops
+   * over std::log.
    * The vector logarithm is accurate to a few units in the last place (glibc
    * documents at most 4 ulp); callers that need rigorous bounds widen by
    * batch_log_ulp() ulps. Special values follow std::log: log(0) = -infinity,
@@ -31,8 +32,8 @@ namespace estep
     return 8.;
   }
 
-  /** Name of the path batch_log() takes on this machine ("avx2 libmvec", "sse2
-   * libmvec" or "scalar"). */
+  /** Name of the path batch_log() takes on this machine ("avx512 libmvec",
+   * "avx2 libmvec", "sse2 libmvec" or "scalar"). */
   const char *
   batch_log_path();
 } // namespace estep
