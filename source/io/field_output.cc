@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace estep
 {
@@ -125,14 +126,22 @@ namespace estep
     if (self.format == Format::vtu)
       {
         std::snprintf(name, sizeof(name), "fields/solution-%05u.vtu", n);
-        std::ostringstream vtu;
-        self.vtu->write(vtu,
-                        snapshot.t,
-                        n,
-                        {{"displacement", 3, &displacement},
-                         {"velocity", 3, &velocity}},
-                        {{"J", 1, &J}, {"strain_energy_density", 1, &W}});
-        write_file_atomically((self.directory / name).string(), vtu.str());
+        // Written in place: a new file that the series lists only once it is
+        // complete (renaming over a file left by an earlier run would make
+        // ext4 flush it to disk, seconds per run on a busy disk).
+        {
+          std::ofstream out(self.directory / name);
+          self.vtu->write(out,
+                          snapshot.t,
+                          n,
+                          {{"displacement", 3, &displacement},
+                           {"velocity", 3, &velocity}},
+                          {{"J", 1, &J}, {"strain_energy_density", 1, &W}});
+          out.close();
+          if (!out)
+            throw std::runtime_error("Field output: cannot write <" +
+                                     (self.directory / name).string() + ">.");
+        }
         self.pvd_records.emplace_back(snapshot.t, name);
         std::ostringstream pvd;
         dealii::DataOutBase::write_pvd_record(pvd, self.pvd_records);

@@ -155,12 +155,7 @@ namespace estep
       ++statistics.n_value_evaluations;
       return flight.value(s);
     };
-    // f(0): a flight that departs from a level starts where the previous one
-    // reached it, within round-off, and counts as sitting on it; any other
-    // is evaluated.
-    const double f_zero = departure_sign > 0 ? c0 :
-                          departure_sign < 0 ? c1 :
-                                               value_at(0.);
+    const double f_zero = value_at(0.);
     // The level the flight sits on at s = 0, if any: the departure level, or
     // a level that f(0) lies within the band of.
     const double sitting_level =

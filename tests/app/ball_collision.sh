@@ -5,8 +5,9 @@
 # Checked from summary.json and history.csv: both runs complete and conserve the terraced
 # energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
 # intersecting faces during contact, the impenetrable run none at any step end; both report a
-# coefficient of restitution in [0.8, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
-# 0.0476); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact, but no
+# coefficient of restitution in [0.7, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
+# 0.0476; the restitution is chaotic in round-off: 0.811 ... 0.912 measured under
+# perturbations of 1e-10 and below, doc/contact_system.md); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact, but no
 # step has zero length (simultaneous contacts make one event). Then the
 # high-speed variant (parameter_files/ball_collision_high_speed.prm).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
@@ -44,7 +45,7 @@ expect(s["angular momentum drift"] < 1e-10 * l0, f"angular momentum drift {s['an
 c = s["contact"]
 pairs = c["largest number of intersecting face pairs"]
 expect(pairs > 0 if pairs_rule == "positive" else pairs == 0, f"largest number of intersecting pairs {pairs}")
-expect(0.8 <= c["coefficient of restitution"] <= 1., f"restitution {c['coefficient of restitution']}")
+expect(0.7 <= c["coefficient of restitution"] <= 1., f"restitution {c['coefficient of restitution']}")
 expect(0.03 <= c["contact duration"] <= 0.07, f"contact duration {c['contact duration']}")
 expect(c["contact duration resolution"] < 2e-3, f"contact duration resolution {c['contact duration resolution']}")
 hertz = s["problem"]["Hertz contact duration estimate"]

@@ -19,10 +19,10 @@ namespace estep
    *
    * Format "vtu": one fields/solution-NNNNN.vtu per snapshot (VtuFile: the
    * mesh's own vertices and cells, compressed) and the time series
-   * solution.pvd (both written atomically, so the series is valid while the
-   * run goes on). Format "hdf5": fields/solution-NNNNN.h5 with
-   * the time series solution.xdmf (needs MPI to be initialised, which the estep
-   * command does when this format is chosen).
+   * solution.pvd, rewritten atomically after each snapshot, so that it is
+   * valid while the run goes on and lists only complete files. Format "hdf5":
+   * fields/solution-NNNNN.h5 with the time series solution.xdmf (needs MPI to
+   * be initialised, which the estep command does when this format is chosen).
    */
   class FieldOutput : public RunObserver
   {
