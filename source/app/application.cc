@@ -320,6 +320,8 @@ namespace estep
       const TimeLoopResult result =
         run_time_loop(*integrator, settings, observers);
       progress.reset();
+      if (fields)
+        fields->finish();
 
       // The summary.
       const Vector &q        = integrator->position();

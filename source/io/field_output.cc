@@ -11,6 +11,7 @@
 #include <estep/io/json_writer.h>
 #include <estep/io/vtu_file.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -53,7 +54,20 @@ namespace estep
     /** The mesh, encoded once (format vtu). */
     std::unique_ptr<VtuFile>                    vtu;
     std::vector<std::pair<double, std::string>> pvd_records;
-    std::vector<dealii::XDMFEntry>              xdmf_entries;
+    /** Snapshots not yet in solution.pvd, and when it was last written. */
+    bool                                  pvd_pending = false;
+    std::chrono::steady_clock::time_point pvd_written;
+
+    void
+    write_pvd()
+    {
+      std::ostringstream pvd;
+      dealii::DataOutBase::write_pvd_record(pvd, pvd_records);
+      write_file_atomically((directory / "solution.pvd").string(), pvd.str());
+      pvd_pending = false;
+      pvd_written = std::chrono::steady_clock::now();
+    }
+    std::vector<dealii::XDMFEntry> xdmf_entries;
   };
 
 
@@ -75,6 +89,15 @@ namespace estep
 
 
   FieldOutput::~FieldOutput() = default;
+
+
+
+  void
+  FieldOutput::finish()
+  {
+    if (implementation->pvd_pending)
+      implementation->write_pvd();
+  }
 
 
 
@@ -127,9 +150,11 @@ namespace estep
       {
         std::snprintf(name, sizeof(name), "fields/solution-%05u.vtu", n);
         // Written in place: a new file that the series lists only once it is
-        // complete (renaming over a file left by an earlier run would make
-        // ext4 flush it to disk, seconds per run on a busy disk).
+        // complete. A file of an earlier run is removed first: renaming over
+        // it or truncating it would make ext4 flush the new one to disk
+        // (seconds per run on a busy disk).
         {
+          std::filesystem::remove(self.directory / name);
           std::ofstream out(self.directory / name);
           self.vtu->write(out,
                           snapshot.t,
@@ -143,10 +168,11 @@ namespace estep
                                      (self.directory / name).string() + ">.");
         }
         self.pvd_records.emplace_back(snapshot.t, name);
-        std::ostringstream pvd;
-        dealii::DataOutBase::write_pvd_record(pvd, self.pvd_records);
-        write_file_atomically((self.directory / "solution.pvd").string(),
-                              pvd.str());
+        self.pvd_pending = true;
+        if (self.pvd_records.size() == 1 ||
+            std::chrono::steady_clock::now() - self.pvd_written >=
+              std::chrono::seconds(1))
+          self.write_pvd();
         return;
       }
 

@@ -19,8 +19,11 @@ namespace estep
    *
    * Format "vtu": one fields/solution-NNNNN.vtu per snapshot (VtuFile: the
    * mesh's own vertices and cells, compressed) and the time series
-   * solution.pvd, rewritten atomically after each snapshot, so that it is
-   * valid while the run goes on and lists only complete files. Format "hdf5":
+   * solution.pvd. The series is rewritten atomically after a snapshot if the
+   * last rewrite is a second old or more, and by finish(): it is valid while
+   * the run goes on, lists only complete files and lags at most a second
+   * behind them (rewriting it after every snapshot cost seconds on a slow
+   * disk, which ext4 makes flush a file renamed over another). Format "hdf5":
    * fields/solution-NNNNN.h5 with the time series solution.xdmf (needs MPI to
    * be initialised, which the estep command does when this format is chosen).
    */
@@ -44,6 +47,10 @@ namespace estep
     /** Writes the snapshots due in (previous_time(), time()], and the start. */
     void
     after_step(const TimeIntegrator &integrator) override;
+
+    /** Brings the time series file up to date (call at the end of a run). */
+    void
+    finish();
 
     /** Number of snapshots written. */
     unsigned int
