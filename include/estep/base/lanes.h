@@ -166,13 +166,6 @@ namespace estep
   {
     return (x[0] + x[1]) + (x[2] + x[3]);
   }
-
-  /** Whether every lane of @p x is positive (false for NaN). */
-  ESTEP_LANE_INLINE bool
-  all_positive(const Lanes x)
-  {
-    return x[0] > 0. && x[1] > 0. && x[2] > 0. && x[3] > 0.;
-  }
 } // namespace estep
 
 #endif
