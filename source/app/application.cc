@@ -56,7 +56,8 @@ namespace estep
       "\n"
       "A run writes the parameters used (parameters.prm), history.csv and summary.json to\n"
       "the directory named by 'set Output directory'.\n"
-      "Exit codes: 0 completed, 1 bad input, 2 the run became unstable.\n";
+      "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
+      "stalled (its event search could not advance at round-off).\n";
 
     /** What the command line asks for. */
     struct CommandLine
@@ -206,7 +207,9 @@ namespace estep
                       const MechanicalSystem   &system)
     {
       if (parameters.method == "energy stepping")
-        return std::make_unique<EnergyStepping>(system, parameters.energy_step);
+        return std::make_unique<EnergyStepping>(system,
+                                                parameters.energy_step,
+                                                parameters.terrace_offset);
       if (parameters.method == "explicit newmark")
         return std::make_unique<ExplicitNewmark>(system, parameters.time_step);
       return create_implicit_integrator(parameters.method,
@@ -362,8 +365,7 @@ namespace estep
       if (const auto *stepping =
             dynamic_cast<const EnergyStepping *>(integrator.get()))
         {
-          const double Eh0 = T0 + std::floor(V0 / stepping->energy_step()) *
-                                    stepping->energy_step();
+          const double Eh0 = stepping->initial_terraced_energy();
           energies.add("energy step", stepping->energy_step())
             .add("initial terraced energy", Eh0)
             .add("final terraced energy", stepping->terraced_energy())
@@ -401,10 +403,11 @@ namespace estep
       if (contact)
         std::cout << "estep: " << contact->report(problem.q0, problem.v0, q, v)
                   << '\n';
-      if (result.status == RunStatus::unstable)
+      if (result.status != RunStatus::completed)
         {
           std::cerr << "estep: " << result.message << '\n';
-          return exit_unstable;
+          return result.status == RunStatus::unstable ? exit_unstable :
+                                                        exit_stalled;
         }
       return exit_success;
     }

@@ -4,6 +4,9 @@
 #include <estep/implicit/create_implicit_integrator.h>
 #include <estep/implicit/implicit_parameters.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace estep
@@ -49,6 +52,14 @@ namespace estep
         Double(0., max),
         "Energy step h of energy stepping (energy units of the system). "
         "The time steps follow from it.");
+      prm.declare_entry(
+        "Terrace offset",
+        "0",
+        Double(0., 1.),
+        "Where the levels of energy stepping lie, as a fraction c of the "
+        "energy step: at (k + c) h for every integer k. This is the "
+        "additive constant of V that the method leaves free; 0 is the "
+        "reference text's choice. Must be smaller than 1.");
       prm.declare_entry("Time step",
                         "1e-3",
                         Double(0., max),
@@ -114,12 +125,13 @@ namespace estep
       throw std::runtime_error("Output directory: must not be empty.");
 
     prm.enter_subsection("Time integration");
-    method        = prm.get("Method");
-    start_time    = prm.get_double("Start time");
-    end_time      = prm.get_double("End time");
-    energy_step   = prm.get_double("Energy step");
-    time_step     = prm.get_double("Time step");
-    blowup_factor = prm.get_double("Blow-up factor");
+    method         = prm.get("Method");
+    start_time     = prm.get_double("Start time");
+    end_time       = prm.get_double("End time");
+    energy_step    = prm.get_double("Energy step");
+    terrace_offset = prm.get_double("Terrace offset");
+    time_step      = prm.get_double("Time step");
+    blowup_factor  = prm.get_double("Blow-up factor");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -134,9 +146,40 @@ namespace estep
       throw std::runtime_error(
         "Time integration/End time: must be larger than the start time (" +
         std::to_string(start_time) + ").");
+    // Times are resolved to about a million units of round-off of the
+    // largest time of the run: a shorter span or output interval could not
+    // be stepped through in floating point.
+    const double time_resolution =
+      std::ldexp(std::numeric_limits<double>::epsilon() *
+                   std::max(std::abs(start_time), std::abs(end_time)),
+                 20);
+    if (end_time - start_time < time_resolution)
+      throw std::runtime_error(
+        "Time integration/End time: the time span " +
+        std::to_string(end_time - start_time) +
+        " is below the resolution of floating-point times this far from 0 (" +
+        std::to_string(time_resolution) + "); shift the start time to 0.");
+    const auto check_interval = [&](const char  *entry,
+                                    const double interval,
+                                    const double max_outputs) {
+      if (interval > 0. && interval < time_resolution)
+        throw std::runtime_error(std::string("Output/") + entry +
+                                 ": below the resolution of the run's times (" +
+                                 std::to_string(time_resolution) + ").");
+      if (interval > 0. && (end_time - start_time) / interval > max_outputs)
+        throw std::runtime_error(
+          std::string("Output/") + entry + ": would write more than " +
+          std::to_string(static_cast<long long>(max_outputs)) +
+          " outputs over the run; choose a larger interval.");
+    };
+    check_interval("History interval", history_interval, 1e8);
+    check_interval("Field output interval", field_output_interval, 1e5);
     if (method == "energy stepping" && !(energy_step > 0.))
       throw std::runtime_error(
         "Time integration/Energy step: must be positive.");
+    if (!(terrace_offset < 1.))
+      throw std::runtime_error(
+        "Time integration/Terrace offset: must be smaller than 1.");
     if (method != "energy stepping" && !(time_step > 0.))
       throw std::runtime_error("Time integration/Time step: must be positive.");
   }

@@ -3,18 +3,23 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
 {
   EnergyStepping::EnergyStepping(const MechanicalSystem &system,
-                                 const double            energy_step)
+                                 const double            energy_step,
+                                 const double            terrace_offset)
     : TimeIntegrator(system)
     , h(energy_step)
+    , c(terrace_offset)
   {
     if (!(energy_step > 0.) || !std::isfinite(energy_step))
       throw std::invalid_argument(
         "The energy step must be positive and finite.");
+    if (!(terrace_offset >= 0. && terrace_offset < 1.))
+      throw std::invalid_argument("The terrace offset must lie in [0, 1).");
   }
 
 
@@ -39,11 +44,15 @@ namespace estep
     if (!std::isfinite(V0))
       throw std::runtime_error(
         "The initial configuration is inadmissible: its potential energy is not finite.");
-    level        = static_cast<long long>(std::floor(V0 / h));
+    level = static_cast<long long>(std::floor(V0 / h - c));
+    // Round-off of V0 / h - c may leave V0 just below its level.
+    if (V0 < level_height(level))
+      --level;
     level_flight = level;
     departure    = Departure::interior;
     last_flight  = 0.;
     gradient_buffer.reinit(q0.size());
+    E_h0 = terraced_energy();
   }
 
 
@@ -56,8 +65,8 @@ namespace estep
       return;
 
     CrossingQuery query;
-    query.lower_level  = level * h;
-    query.upper_level  = (level + 1) * h;
+    query.lower_level  = level_height(level);
+    query.upper_level  = level_height(level + 1);
     query.horizon      = horizon;
     query.first_window = (last_flight > 0.) ? 2. * last_flight : horizon;
     Crossing                       crossing;
@@ -70,11 +79,24 @@ namespace estep
     for (unsigned int k = 0;; ++k)
       {
         query.departure = departure;
-        crossing        = find_first_crossing(*system.free_flight(q, v),
-                                       query,
-                                       search_statistics);
-        s_level         = crossing.direction != 0 ? crossing.s : horizon;
-        contact         = system.first_constraint_event(q, v, s_level);
+        try
+          {
+            crossing = find_first_crossing(*system.free_flight(q, v),
+                                           query,
+                                           search_statistics);
+          }
+        catch (const SearchStalled &stalled)
+          {
+            std::ostringstream message;
+            message << "Energy stepping stalled at t = " << t << " with the "
+                    << "energy step h = " << h << ": " << stalled.what()
+                    << ". The energy step is likely below the round-off of "
+                    << "the potential energy (or V is not finite there); "
+                    << "try a larger Energy step.";
+            throw StalledRun(message.str());
+          }
+        s_level = crossing.direction != 0 ? crossing.s : horizon;
+        contact = system.first_constraint_event(q, v, s_level);
         if (!contact || contact->s > 0. || k == max_simultaneous_contacts)
           break;
         reflect(contact->normal);
@@ -198,7 +220,7 @@ namespace estep
     snapshot.v                         = v_flight;
     snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
     snapshot.potential_energy          = system.energy(snapshot.q);
-    snapshot.terraced_potential_energy = level_flight * h;
+    snapshot.terraced_potential_energy = level_height(level_flight);
     return snapshot;
   }
 
@@ -207,7 +229,7 @@ namespace estep
   double
   EnergyStepping::terraced_energy() const
   {
-    return kinetic_energy(system, v) + level * h;
+    return kinetic_energy(system, v) + level_height(level);
   }
 
 
@@ -223,6 +245,8 @@ namespace estep
             {"energy evaluations", search_statistics.n_value_evaluations},
             {"enclosures", search_statistics.n_enclosures},
             {"locating evaluations", search_statistics.n_locate_evaluations},
+            {"most intervals in one search",
+             search_statistics.max_intervals_in_one_search},
             {"gradient evaluations", n_gradients}};
   }
 } // namespace estep

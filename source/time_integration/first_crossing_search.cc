@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 namespace estep
@@ -10,6 +11,15 @@ namespace estep
   namespace
   {
     constexpr double epsilon = std::numeric_limits<double>::epsilon();
+
+    std::string
+    to_short_string(const double x)
+    {
+      std::ostringstream stream;
+      stream.precision(6);
+      stream << x;
+      return stream.str();
+    }
 
     /** A parameter interval [a, b] waiting to be examined, with f at its ends.
      */
@@ -133,6 +143,18 @@ namespace estep
 
 
 
+  SearchStalled::SearchStalled(const double s, const double width)
+    : std::runtime_error("the first-crossing search examined " +
+                         std::to_string(max_intervals_examined) +
+                         " intervals without deciding, the last at flight "
+                         "parameter s = " +
+                         to_short_string(s) + ", " + to_short_string(width) +
+                         " wide")
+    , s(s)
+  {}
+
+
+
   Crossing
   find_first_crossing(const FreeFlight    &flight,
                       const CrossingQuery &query,
@@ -174,6 +196,7 @@ namespace estep
       std::max(query.first_window, std::numeric_limits<double>::min());
 
     std::vector<PendingInterval> pending;
+    std::uint64_t                n_examined = 0;
     double window_start = 0., window_length = std::min(query.first_window, end);
     if (!(window_length > 0.))
       window_length = end;
@@ -191,6 +214,10 @@ namespace estep
           {
             const PendingInterval I = pending.back();
             pending.pop_back();
+            if (++n_examined > max_intervals_examined)
+              throw SearchStalled(I.a, I.b - I.a);
+            statistics.max_intervals_in_one_search =
+              std::max(statistics.max_intervals_in_one_search, n_examined);
             // The rules for the sitting level apply while f(a) is still
             // within its band; beyond, f(a) is strictly inside the terrace.
             const bool in_prefix = sitting && I.a == prefix_end &&
@@ -245,8 +272,29 @@ namespace estep
                     continue;
                   }
 
-                up_possible   = enclosure.value.upper >= c1;
-                down_possible = enclosure.value.lower <= c0;
+                if (in_prefix && departure_sign != 0 &&
+                    (departure_sign > 0 ? decreasing : increasing))
+                  {
+                    // Still within the band of the departure level, and proven
+                    // to move back through it: f came back within the band
+                    // (a dip or bump shallower than the round-off), so the
+                    // departure level is the one reached, at the latest where
+                    // f(b) is beyond it; if f(a) is beyond it already, the
+                    // flight is on it at a.
+                    const int direction = -departure_sign;
+                    if (direction * (I.fb - sitting_level) >= 0.)
+                      {
+                        if (direction * (I.fa - sitting_level) < 0.)
+                          return locate(direction, I.a, I.fa, I.b, I.fb);
+                        return {direction, I.a};
+                      }
+                    prefix_end = I.b;
+                    continue;
+                  }
+
+                // A NaN bound proves nothing: the level stays possible.
+                up_possible   = !(enclosure.value.upper < c1);
+                down_possible = !(enclosure.value.lower > c0);
                 // Convexity: where f is convex its sublevel sets are
                 // intervals, so on [a, b] it stays below max(f(a), f(b)) and
                 // crosses a level at most once going down and once going up;

@@ -17,8 +17,26 @@ namespace estep
   std::string
   to_string(const RunStatus status)
   {
-    return status == RunStatus::completed ? "completed" : "unstable";
+    switch (status)
+      {
+        case RunStatus::completed:
+          return "completed";
+        case RunStatus::unstable:
+          return "unstable";
+        case RunStatus::stalled:
+          return "stalled";
+      }
+    return "unknown";
   }
+
+
+
+  namespace
+  {
+    /** Steps in a row that leave the time where it is before the run is
+     * declared stalled (events at one instant are legitimate, a few). */
+    constexpr unsigned int max_steps_in_place = 10000;
+  } // namespace
 
 
 
@@ -59,9 +77,21 @@ namespace estep
     emit_outputs_until(t0);
     try
       {
+        unsigned int n_steps_in_place = 0;
         while (integrator.time() < t_end)
           {
+            const double t_before = integrator.time();
             integrator.step(t_end);
+            n_steps_in_place =
+              (integrator.time() > t_before) ? 0 : n_steps_in_place + 1;
+            if (n_steps_in_place == max_steps_in_place)
+              {
+                std::ostringstream message;
+                message << "The run stalled at t = " << integrator.time()
+                        << ": " << max_steps_in_place
+                        << " steps in a row did not advance the time.";
+                throw StalledRun(message.str());
+              }
             const double T = kinetic_energy(system, integrator.velocity());
             if (!std::isfinite(T) || (bound > 0. && T > bound))
               {
@@ -81,6 +111,11 @@ namespace estep
       {
         result.status  = RunStatus::unstable;
         result.message = unstable.what();
+      }
+    catch (const StalledRun &stalled)
+      {
+        result.status  = RunStatus::stalled;
+        result.message = stalled.what();
       }
     result.final_time   = integrator.time();
     result.wall_seconds = std::chrono::duration<double>(

@@ -114,6 +114,20 @@ grep -q '"status": "unstable"' blowup/summary.json || fail "summary.json of a bl
 grep -q '"message": "The run became unstable' blowup/summary.json || fail "summary.json of a blow-up lacks the message"
 if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up holds non-finite values"; fi
 
+# Times that floating point cannot step through, and runaway output intervals: input errors.
+expect 1 "End time: the time span .* below the resolution" -- run.prm -s "Time integration/Start time=1e16" -s "Time integration/End time=1.000000000000001e16"
+expect 1 "History interval: below the resolution" -- run.prm -s "Output/History interval=1e-300"
+expect 1 "Field output interval: would write more than" -- run.prm -s "Output/Field output interval=1e-9"
+
+# A run whose crossing search crawls at round-off (V overflows) ends as stalled, exit code 3,
+# naming the time and the energy step (the cap on the search's work, not a hang).
+cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=1"
+      -s "Time integration/End time=0.1" -s "Output/Field output interval=0")
+expect 3 "stalled at t = .* energy step h = 1e-05" -- "${cube[@]}" -s "Elastic body/Material/Mu=1e300" -s "Output directory=stalled"
+grep -q '"status": "stalled"' stalled/summary.json || fail "summary.json of a stalled run lacks status stalled"
+# A stiff cube whose reflections return within the round-off band of their level: it completes.
+expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisions=2" -s "Elastic body/Material/Mu=2e7" -s "Output directory=stiff"
+
 # The colliding balls through the application (explicit Newmark with penalty contact).
 expect 0 "completed at t = 0.01" -- "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_newmark.prm" \
   -s "Output directory=balls" -s "Time integration/End time=0.01"

@@ -12,7 +12,9 @@ namespace estep
      */
     exit_input_error = 1,
     /** The run ended unstable (blow-up); summary.json says so. */
-    exit_unstable = 2
+    exit_unstable = 2,
+    /** The run stalled (could not advance in time); summary.json says so. */
+    exit_stalled = 3
   };
 
   /**

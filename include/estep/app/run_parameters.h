@@ -32,6 +32,7 @@ namespace estep
     double      start_time;
     double      end_time;
     double      energy_step;
+    double      terrace_offset;
     double      time_step;
     double      blowup_factor;
 

@@ -8,7 +8,9 @@ namespace estep
 {
   /**
    * Energy-stepping (Gonzalez, Schmidt and Ortiz, 2010): the exact motion of
-   * the terraced potential V_h(q) = h floor(V(q) / h).
+   * the terraced potential V_h(q) = h (floor(V(q) / h - c) + c), whose levels
+   * lie at (L + c) h. The terrace offset c in [0, 1) is the additive constant
+   * of V that the method leaves free (0 in the reference text).
    *
    * Between events the motion is free flight, q(t) = q_k + (t - t_k) v_k. The
    * next event is the first level crossing found by find_first_crossing()
@@ -26,22 +28,26 @@ namespace estep
    * terrace index L is an integer carried from event to event, never recomputed
    * from V.
    *
-   * Exactly conserved, up to round-off: E_h = 1/2 v^T M v + L h, and the linear
-   * and angular momenta of systems whose V is invariant under translations and
-   * rotations.
+   * Exactly conserved, up to round-off: E_h = 1/2 v^T M v + (L + c) h, and the
+   * linear and angular momenta of systems whose V is invariant under
+   * translations and rotations.
    */
   class EnergyStepping : public TimeIntegrator
   {
   public:
     /**
      * @param energy_step The energy step h > 0 (energy units of the system).
+     * @param terrace_offset The offset c in [0, 1) of the levels (L + c) h.
      */
-    EnergyStepping(const MechanicalSystem &system, const double energy_step);
+    EnergyStepping(const MechanicalSystem &system,
+                   const double            energy_step,
+                   const double            terrace_offset = 0.);
 
     std::string
     name() const override;
 
-    /** Set the state; the terrace index becomes floor(V(q0) / h) once, here. */
+    /** Set the state; the terrace index becomes floor(V(q0) / h - c) once,
+     * here. */
     void
     initialize(const double t0, const Vector &q0, const Vector &v0) override;
 
@@ -57,8 +63,8 @@ namespace estep
     std::vector<Counter>
     counters() const override;
 
-    /** The current terrace index L (L h <= V < (L+1) h up to the root
-     * tolerance). */
+    /** The current terrace index L ((L + c) h <= V < (L + 1 + c) h up to the
+     * root tolerance). */
     long long
     terrace_index() const
     {
@@ -72,9 +78,23 @@ namespace estep
       return h;
     }
 
-    /** E_h = T + L h, the exactly conserved energy. */
+    /** The height (L + c) h of level L. */
+    double
+    level_height(const long long L) const
+    {
+      return (static_cast<double>(L) + c) * h;
+    }
+
+    /** E_h = T + (L + c) h, the exactly conserved energy. */
     double
     terraced_energy() const;
+
+    /** E_h at the start of the run. */
+    double
+    initial_terraced_energy() const
+    {
+      return E_h0;
+    }
 
   private:
     /** Apply the momentum jump at the current point for a crossing in @p
@@ -90,6 +110,8 @@ namespace estep
     reflect(const Vector &normal);
 
     const double h;
+    const double c;
+    double       E_h0        = 0.;
     long long    level       = 0;
     Departure    departure   = Departure::interior;
     double       last_flight = 0.;

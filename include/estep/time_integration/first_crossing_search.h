@@ -4,6 +4,7 @@
 #include <estep/systems/free_flight.h>
 
 #include <cstdint>
+#include <stdexcept>
 
 namespace estep
 {
@@ -56,6 +57,27 @@ namespace estep
     std::uint64_t n_enclosures        = 0;
     /** The part of n_value_evaluations spent locating crossings. */
     std::uint64_t n_locate_evaluations = 0;
+    /** The most intervals one search examined (see max_intervals_examined). */
+    std::uint64_t max_intervals_in_one_search = 0;
+  };
+
+  /**
+   * The most parameter intervals one search examines. A search needs a few
+   * tens per crossing; one that examines this many is crawling at the
+   * round-off of f (the energy step below the round-off of V, or V not
+   * finite) and gives up with SearchStalled.
+   */
+  constexpr std::uint64_t max_intervals_examined = std::uint64_t(1) << 16;
+
+  /** Thrown by find_first_crossing() when it examined max_intervals_examined
+   * intervals without deciding. */
+  class SearchStalled : public std::runtime_error
+  {
+  public:
+    SearchStalled(const double s, const double width);
+
+    /** The flight parameter where the search stalled. */
+    double s;
   };
 
   /**
@@ -86,7 +108,13 @@ namespace estep
    *   grows without bound towards it, so a level is reached before;
    * - an undecided interval shorter than the resolution (16 units of round-off
    * of the flight parameter) is reported as a crossing at its left end: the
-   * search errs early, never late.
+   * search errs early, never late;
+   * - while f stays within the band of the departure level (four times the
+   *   flight's value tolerance), a proven slope back through that level (a
+   *   return shallower than the round-off of f) reports the departure level
+   *   as reached: where f(b) lies beyond it, at the latest;
+   * - the search always ends: after max_intervals_examined intervals it
+   *   throws SearchStalled instead of crawling on at round-off.
    */
   Crossing
   find_first_crossing(const FreeFlight    &flight,

@@ -4,7 +4,7 @@
 #include <estep/systems/mechanical_system.h>
 
 #include <cstdint>
-#include <exception>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -142,21 +142,18 @@ namespace estep
   };
 
   /** Thrown when a run becomes unstable (non-finite or exploding state). */
-  class UnstableRun : public std::exception
+  class UnstableRun : public std::runtime_error
   {
   public:
-    explicit UnstableRun(std::string message)
-      : message(std::move(message))
-    {}
+    using std::runtime_error::runtime_error;
+  };
 
-    const char *
-    what() const noexcept override
-    {
-      return message.c_str();
-    }
-
-  private:
-    std::string message;
+  /** Thrown when an integrator cannot advance (its event search gave up at
+   * round-off); the run ends with status stalled. */
+  class StalledRun : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
   };
 } // namespace estep
 

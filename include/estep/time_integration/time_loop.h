@@ -31,10 +31,13 @@ namespace estep
   enum class RunStatus
   {
     completed,
-    unstable
+    unstable,
+    /** The integrator could not advance (e.g. a search crawling at round-off).
+     */
+    stalled
   };
 
-  /** Text of a status for output ("completed", "unstable"). */
+  /** Text of a status for output ("completed", "unstable", "stalled"). */
   std::string
   to_string(const RunStatus status);
 
