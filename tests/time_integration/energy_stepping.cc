@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../terrace_audit.h"
 #include "argon.h"
 #include "test_flights.h"
 
@@ -60,6 +61,28 @@ namespace
     // The true energy stays within one energy step of the terraced one.
     const double V = argon.system->energy(stepping.position());
     EXPECT_LE(std::abs(V - stepping.terrace_index() * h), h * (1. + 1e-9));
+  }
+
+  TEST(EnergyStepping, ArgonFlightsStayOnTheirTerrace)
+  {
+    // V sampled at 64 points inside every flight lies between the flight's
+    // two levels, for a coarse and a fine energy step and shifted terraces.
+    const Problem argon = estep::testing::argon_cluster();
+    for (const auto &[h, offset] :
+         {std::pair{1e-2, 0.}, std::pair{1e-3, 0.}, std::pair{1e-3, 0.5}})
+      {
+        EnergyStepping stepping(*argon.system, h, offset);
+        stepping.initialize(0., argon.q0, argon.v0);
+        double worst = -1.;
+        while (stepping.n_steps() < 20000)
+          {
+            stepping.step(1e6);
+            worst = std::max(worst, estep_test::terrace_excursion(stepping));
+          }
+        std::cout << "h = " << h << ", offset " << offset
+                  << ": largest excursion beyond a level " << worst << " h\n";
+        EXPECT_LT(worst, 1e-9);
+      }
   }
 
   TEST(EnergyStepping, IsTimeReversible)
