@@ -14,15 +14,19 @@ namespace estep::testing
 {
   /**
    * f(s) = sum_k c[k] s^k. With @p with_curvature its enclosures also hold
-   * f'' and the sample of f, f' at the centre, as the elastic body's do.
+   * f'' and the sample of f, f' at the centre, as the elastic body's do. It
+   * claims the round-off @p value_tolerance (its enclosures are widened by
+   * as much).
    */
   class PolynomialFlight : public FreeFlight
   {
   public:
     explicit PolynomialFlight(std::vector<double> coefficients,
-                              const bool          with_curvature = false)
+                              const bool          with_curvature  = false,
+                              const double        value_tolerance = 0.)
       : c(std::move(coefficients))
       , with_curvature(with_curvature)
+      , tolerance(value_tolerance)
     {
       for (unsigned int k = 1; k < c.size(); ++k)
         dc.push_back(k * c[k]);
@@ -46,22 +50,30 @@ namespace estep::testing
       return {horner(c, s), horner(dc, s)};
     }
 
+    double
+    value_tolerance() const override
+    {
+      return tolerance;
+    }
+
     LineEnclosure
     enclose(const double a, const double b) const override
     {
-      LineEnclosure e{interval_horner(c, a, b), interval_horner(dc, a, b)};
+      LineEnclosure e{interval_horner(c, a, b).widened(0., tolerance),
+                      interval_horner(dc, a, b)};
       if (with_curvature)
         {
           // The second-order form about the centre m (as the elastic body
           // forms it): f between the quadratics with the extreme curvatures,
           // widened for round-off.
           const double m = 0.5 * (a + b), r = 0.5 * (b - a);
-          e.curvature         = interval_horner(ddc, a, b);
-          e.sample_point      = m;
-          e.sample            = value_and_derivative(m);
-          const double margin = 1e-13 * (1. + std::abs(e.sample.value) +
-                                         std::abs(e.sample.derivative));
-          e.value             = Interval{quadratic_range(e.sample.value,
+          e.curvature    = interval_horner(ddc, a, b);
+          e.sample_point = m;
+          e.sample       = value_and_derivative(m);
+          const double margin =
+            tolerance + 1e-13 * (1. + std::abs(e.sample.value) +
+                                 std::abs(e.sample.derivative));
+          e.value = Interval{quadratic_range(e.sample.value,
                                              e.sample.derivative,
                                              0.5 * e.curvature.lower,
                                              -r,
@@ -105,6 +117,7 @@ namespace estep::testing
 
     std::vector<double> c, dc, ddc;
     bool                with_curvature;
+    double              tolerance;
   };
 
   /** f(s) = base + A exp(-((s - s0) / w)^2). */
@@ -138,18 +151,18 @@ namespace estep::testing
     LineEnclosure
     enclose(const double a, const double b) const override
     {
-      // f increases up to s0 and decreases after; f' has its extremes at s0 -+
-      // w / sqrt(2).
+      // f is monotone on either side of s0 (up then down for A > 0, the mirror
+      // image for A < 0); f' has its extremes at s0 -+ w / sqrt(2).
       Interval value = Interval::hull(value_at(a), value_at(b));
       if (a < s0 && s0 < b)
-        value.upper = value_at(s0);
-      Interval     slope  = Interval::hull(slope_at(a), slope_at(b));
-      const double peak   = s0 - w / std::sqrt(2.),
-                   trough = s0 + w / std::sqrt(2.);
-      if (a < peak && peak < b)
-        slope.upper = std::max(slope.upper, slope_at(peak));
-      if (a < trough && trough < b)
-        slope.lower = std::min(slope.lower, slope_at(trough));
+        value = {std::min(value.lower, value_at(s0)),
+                 std::max(value.upper, value_at(s0))};
+      Interval slope = Interval::hull(slope_at(a), slope_at(b));
+      for (const double extreme :
+           {s0 - w / std::sqrt(2.), s0 + w / std::sqrt(2.)})
+        if (a < extreme && extreme < b)
+          slope = {std::min(slope.lower, slope_at(extreme)),
+                   std::max(slope.upper, slope_at(extreme))};
       return {value.widened(1e-15, 1e-300), slope.widened(1e-15, 1e-300)};
     }
 

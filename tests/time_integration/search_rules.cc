@@ -1,0 +1,328 @@
+// One constructed function per rule of the first-crossing search that lets it
+// dismiss or decide an interval without bisecting (enclosure, monotonicity,
+// convexity, concavity, departure level, sitting band, prefix, centre
+// sample, resolution): each function is built so that the rule, wrong in
+// either direction, gives a missed, a wrong or a late crossing, and each test
+// asserts the exact first crossing. The mutation suite (tests/mutations/)
+// checks that every such mistake is caught here.
+#include <estep/time_integration/first_crossing_search.h>
+
+#include <gtest/gtest.h>
+
+#include "test_flights.h"
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+  using namespace estep;
+  using estep::testing::BumpFlight;
+  using estep::testing::PolynomialFlight;
+
+  /** The smaller root of c2 s^2 + c1 s + c0 (two real roots), computed
+   * without cancellation. */
+  double
+  first_root(const double c0, const double c1, const double c2)
+  {
+    const double q =
+      -0.5 * (c1 + std::copysign(std::sqrt(c1 * c1 - 4. * c2 * c0), c1));
+    const double r1 = q / c2, r2 = c0 / q;
+    return std::min(r1 > 0. ? r1 : INFINITY, r2 > 0. ? r2 : INFINITY);
+  }
+
+  /** The search on [0, horizon] in one first window, levels 0 and 1. */
+  Crossing
+  search(const FreeFlight &flight,
+         const Departure   departure,
+         const double      horizon,
+         SearchStatistics *statistics = nullptr)
+  {
+    SearchStatistics local;
+    return find_first_crossing(flight,
+                               {0., 1., departure, horizon, horizon},
+                               statistics ? *statistics : local);
+  }
+
+  /** The returned crossing is the exact first one: its direction, and its
+   * parameter on the near side of @p s_exact within @p tolerance. */
+  void
+  expect_crossing(const Crossing &crossing,
+                  const int       direction,
+                  const double    s_exact,
+                  const double    tolerance = 1e-12)
+  {
+    EXPECT_EQ(crossing.direction, direction);
+    EXPECT_NEAR(crossing.s, s_exact, tolerance);
+    EXPECT_LE(crossing.s, s_exact + 1e-14);
+  }
+
+  /** A quadratic c0 + c1 s + c2 s^2 and its mirror image 1 - f about the
+   * middle of the terrace [0, 1] (each convex rule tested on the first is the
+   * concave rule on the second, with the direction of every crossing and
+   * departure reversed). */
+  struct MirroredQuadratic
+  {
+    double c0, c1, c2;
+
+    PolynomialFlight
+    flight(const bool mirrored) const
+    {
+      return mirrored ? PolynomialFlight({1. - c0, -c1, -c2}, true) :
+                        PolynomialFlight({c0, c1, c2}, true);
+    }
+  };
+
+  Departure
+  mirror(const Departure departure, const bool mirrored)
+  {
+    if (!mirrored || departure == Departure::interior)
+      return departure;
+    return departure == Departure::from_lower_level ?
+             Departure::from_upper_level :
+             Departure::from_lower_level;
+  }
+
+  // -- Enclosure: an interval is dismissed only if its value range lies
+  // strictly between the levels.
+
+  TEST(SearchRules, EnclosureFindsAThinDipBelowTheLowerLevel)
+  {
+    // The mirror image of the thin bump: 1e-9 below 0 over about 1e-8 in s.
+    const double     s0 = 0.35, w = 1e-4, A = 0.5 + 1e-9;
+    const BumpFlight flight(0.5, -A, s0, w);
+    expect_crossing(search(flight, Departure::interior, 1.),
+                    -1,
+                    s0 - w * std::sqrt(std::log(A / 0.5)));
+  }
+
+  // -- Monotonicity: where f' has one sign only the level ahead can be
+  // reached, and only if f(b) reaches it.
+
+  TEST(SearchRules, MonotoneFlightsReachTheLevelAheadAtTheEnd)
+  {
+    // f(b) exactly on the level (dyadic data): reached, not missed.
+    expect_crossing(
+      search(PolynomialFlight({0.5, 2.}), Departure::interior, 0.25), +1, 0.25);
+    expect_crossing(search(PolynomialFlight({0.5, -2.}),
+                           Departure::interior,
+                           0.25),
+                    -1,
+                    0.25);
+    // And inside: the crossing of the level ahead, the other one never.
+    expect_crossing(search(PolynomialFlight({0.5, 3.}),
+                           Departure::interior,
+                           1.),
+                    +1,
+                    1. / 6.);
+    expect_crossing(search(PolynomialFlight({0.5, -3.}),
+                           Departure::interior,
+                           1.),
+                    -1,
+                    1. / 6.);
+    // Short of the level ahead: no crossing.
+    const Crossing none =
+      search(PolynomialFlight({0.5, 1.}), Departure::interior, 0.25);
+    EXPECT_EQ(none.direction, 0);
+    EXPECT_EQ(none.s, 0.25);
+  }
+
+  // -- Convexity and concavity, from inside the terrace. Each case in both
+  // mirror images: convex as written, concave mirrored.
+
+  TEST(SearchRules, ConvexDipThroughTheLowerLevelBetweenItsSamples)
+  {
+    // f = 0.09 - 2 s + 10 s^2 on [0, 0.3]: ends inside (0.39), its centre
+    // sample (0.015) is inside, yet it dips below 0 on (0.068, 0.132). Convex
+    // and ending inside, only the lower level can be reached: the rule
+    // clearing the wrong direction misses it (concave: the 0.91 + 2 s
+    // - 10 s^2 with the level 1).
+    const MirroredQuadratic f{0.09, -2., 10.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? +1 : -1,
+                      first_root(0.09, -2., 10.));
+  }
+
+  TEST(SearchRules, ConvexEndingBelowTheLowerLevel)
+  {
+    // f(b) below 0: the crossing of 0, located on all of [a, b].
+    const MirroredQuadratic f{0.5, -5., 1.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? +1 : -1,
+                      first_root(0.5, -5., 1.));
+  }
+
+  TEST(SearchRules, ConvexDipsBelowTheLowerLevelBeforeClimbingPastTheUpper)
+  {
+    // f = 0.02 - 2 s + 30 s^2 ends at 2.12 above 1 but first dips below 0:
+    // the upper crossing may be located on [a, b] only where the lower level
+    // is proven out of reach.
+    const MirroredQuadratic f{0.02, -2., 30.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? +1 : -1,
+                      first_root(0.02, -2., 30.));
+  }
+
+  TEST(SearchRules, ConvexClimbingPastTheUpperLevel)
+  {
+    // f = 0.5 + 0.1 s + 10 s^2: the lower level out of reach, the upper one
+    // crossed once.
+    const MirroredQuadratic f{0.5, 0.1, 10.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? -1 : +1,
+                      first_root(-0.5, 0.1, 10.));
+  }
+
+  TEST(SearchRules, ConvexWithTheCentreSampleBelowTheLowerLevel)
+  {
+    // f = 0.1 - 4 s + 13.5 s^2: the centre sample (-0.196) is below 0, f(b)
+    // inside: the crossing lies in [a, m], located there.
+    const MirroredQuadratic f{0.1, -4., 13.5};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? +1 : -1,
+                      first_root(0.1, -4., 13.5));
+  }
+
+  TEST(SearchRules, ConvexEndingAboveWithTheCentreSampleBelowTheUpperLevel)
+  {
+    // f = 0.4 + 0.5 s + 9 s^2 on [0, 0.3]: the centre sample (0.6775) below
+    // 1, f(b) = 1.36 above it, the lower level out of reach: the crossing lies
+    // in [m, b].
+    const MirroredQuadratic f{0.4, 0.5, 9.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored), Departure::interior, 0.3),
+                      mirrored ? -1 : +1,
+                      first_root(-0.6, 0.5, 9.));
+  }
+
+  // -- Departure from a level.
+
+  TEST(SearchRules, LeavingALevelMonotonicallyReachesTheOtherOne)
+  {
+    // From 0 up, f = 2 s: the departure root s = 0 is not a crossing; 1 is
+    // reached at 0.5. Mirrored: from 1 down.
+    const MirroredQuadratic f{0., 2., 0.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored),
+                             mirror(Departure::from_lower_level, mirrored),
+                             1.),
+                      mirrored ? -1 : +1,
+                      0.5);
+  }
+
+  TEST(SearchRules, LeavingALevelAndComingBackToIt)
+  {
+    // From 1 down, f = 1 - 3 s + 5 s^2 (convex) comes back to 1 at s = 0.6
+    // without reaching 0; mirrored: from 0 up, concave, back to 0.
+    const MirroredQuadratic f{1., -3., 5.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored),
+                             mirror(Departure::from_upper_level, mirrored),
+                             1.),
+                      mirrored ? -1 : +1,
+                      0.6);
+  }
+
+  TEST(SearchRules, LeavingALevelAndCrossingTheOtherBeforeComingBack)
+  {
+    // From 1 down, f = 1 - 8 s + 10 s^2 reaches 0 at 0.155 before it could
+    // come back to 1.
+    const MirroredQuadratic f{1., -8., 10.};
+    for (const bool mirrored : {false, true})
+      expect_crossing(search(f.flight(mirrored),
+                             mirror(Departure::from_upper_level, mirrored),
+                             1.),
+                      mirrored ? +1 : -1,
+                      first_root(1., -8., 10.));
+  }
+
+  // -- The sitting band: a flight within the round-off of its departure
+  // level is still on it; a return beyond the band is a crossing.
+
+  TEST(SearchRules, AReturnDeeperThanTheBandIsACrossing)
+  {
+    // From 1 down with f = 1 - 1e-3 s + s^2 and the round-off 1e-12 (band
+    // 4e-12): the dip is 2.5e-7 deep, the return to 1 at s = 1e-3 is the
+    // first crossing, inside the first window (located to the round-off over
+    // the slope, 1e-12 / 1e-3).
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({0., 1e-3, -1.}, true, 1e-12) :
+                     PolynomialFlight({1., -1e-3, 1.}, true, 1e-12);
+        expect_crossing(search(flight,
+                               mirror(Departure::from_upper_level, mirrored),
+                               0.01),
+                        mirrored ? -1 : +1,
+                        1e-3,
+                        2e-9);
+      }
+  }
+
+  TEST(SearchRules, AReturnWithinTheBandIsReportedWithoutCrawling)
+  {
+    // From 1 down with f = 1 - 1e-7 s + s^2 and the round-off 1e-14 (band
+    // 4e-14): the dip, 2.5e-15 deep, cannot be told from the level; f then
+    // climbs through it. The search reports the level reached at or before
+    // the exact return s = 1e-7 after a few tens of intervals, instead of
+    // bisecting the band's edge at round-off (before the rule it crawled
+    // there, 1e-17 per interval).
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({0., 1e-7, -1.}, true, 1e-14) :
+                     PolynomialFlight({1., -1e-7, 1.}, true, 1e-14);
+        SearchStatistics statistics;
+        const Crossing   crossing =
+          search(flight,
+                 mirror(Departure::from_upper_level, mirrored),
+                 1e-3,
+                 &statistics);
+        EXPECT_EQ(crossing.direction, mirrored ? -1 : +1);
+        EXPECT_GT(crossing.s, 0.);
+        EXPECT_LE(crossing.s, 1e-7 * (1. + 1e-9));
+        EXPECT_LT(statistics.n_enclosures, 1000u);
+      }
+  }
+
+  TEST(SearchRules, SittingOnTheLevelWithinTheBandIsNoCrossing)
+  {
+    // From 1 down so slowly that f stays within the band (round-off 1e-12)
+    // for s < 4e-3, then down to 0 at 1: the lower level at s = 1, nothing
+    // before.
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({0., 1e-9, 1. - 1e-9}, true, 1e-12) :
+                     PolynomialFlight({1., -1e-9, -(1. - 1e-9)}, true, 1e-12);
+        expect_crossing(search(flight,
+                               mirror(Departure::from_upper_level, mirrored),
+                               2.),
+                        mirrored ? +1 : -1,
+                        1.,
+                        1e-9);
+      }
+  }
+
+  // -- The prefix: the rules for the departure level hold only from s = 0 on,
+  // while f has not left the level's band.
+
+  TEST(SearchRules, ATouchOfTheDepartureLevelLaterInTheFlightIsACrossing)
+  {
+    // From 0 up, f = 8 s (s - 0.3)^2 peaks at 0.032, touches 0 again at s =
+    // 0.3 (tangentially) and then climbs through 1: the touch is the first
+    // crossing (reported early by at most the resolution of a tangential
+    // touch).
+    const double     k = 8.;
+    PolynomialFlight flight({0., k * 0.09, -k * 0.6, k}, true);
+    const Crossing   crossing = search(flight, Departure::from_lower_level, 1.);
+    EXPECT_EQ(crossing.direction, -1);
+    EXPECT_LE(crossing.s, 0.3);
+    EXPECT_GT(crossing.s, 0.3 - 1e-6);
+  }
+} // namespace
