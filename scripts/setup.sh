@@ -51,7 +51,7 @@ case $action in
     ;;
   --test)
     cd "$build_dir"
-    ctest -LE "paper|long" -j "$jobs" --output-on-failure
+    ctest -LE "paper|long|mutation" -j "$jobs" --output-on-failure
     ;;
   *)
     echo "estep setup: unknown action <$action> (use --example or --test)" >&2

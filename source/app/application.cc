@@ -5,6 +5,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <estep/app/application.h>
+#include <estep/app/input_file.h>
 #include <estep/app/problem.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
@@ -22,6 +23,8 @@
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/explicit_newmark.h>
 #include <estep/time_integration/time_loop.h>
+
+#include <sys/resource.h>
 
 #include <cmath>
 #include <filesystem>
@@ -57,7 +60,8 @@ namespace estep
       "A run writes the parameters used (parameters.prm), history.csv and summary.json to\n"
       "the directory named by 'set Output directory'.\n"
       "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
-      "stalled (its event search could not advance at round-off).\n";
+      "stalled (its event search could not advance at round-off), 4 an output could\n"
+      "not be written (e.g. a full disk).\n";
 
     /** What the command line asks for. */
     struct CommandLine
@@ -195,7 +199,7 @@ namespace estep
               !has_extension(command.input_file, ".xml"))
             throw std::runtime_error("The input file <" + command.input_file +
                                      "> must end in .prm, .json or .xml.");
-          prm.parse_input(command.input_file);
+          read_input_file(prm, command.input_file);
         }
       for (const std::string &text : command.overrides)
         apply_override(prm, text);
@@ -216,6 +220,34 @@ namespace estep
                                         prm,
                                         system,
                                         parameters.time_step);
+    }
+
+    /** The largest resident memory of this process so far, in MiB. */
+    double
+    peak_memory_mib()
+    {
+      rusage usage;
+      getrusage(RUSAGE_SELF, &usage);
+      return usage.ru_maxrss / 1024.; // Linux reports KiB
+    }
+
+    /** Input errors that only show in the initial state (e.g. a velocity
+     * function that evaluates to NaN). */
+    void
+    check_initial_state(const Problem &problem)
+    {
+      for (unsigned int i = 0; i < problem.q0.size(); ++i)
+        if (!std::isfinite(problem.q0[i]))
+          throw std::runtime_error(
+            "The initial configuration of the " + problem.system->name() +
+            " is not finite (coordinate " + std::to_string(i) +
+            "): check its mesh, placement and initial displacement.");
+      for (unsigned int i = 0; i < problem.v0.size(); ++i)
+        if (!std::isfinite(problem.v0[i]))
+          throw std::runtime_error(
+            "The initial velocity of the " + problem.system->name() +
+            " is not finite (component " + std::to_string(i) +
+            "): check its initial velocity entries or function.");
     }
 
     JsonObject
@@ -242,15 +274,7 @@ namespace estep
       RunParameters parameters;
       parameters.parse_parameters(prm);
       Problem problem = create_problem(prm);
-
-      const std::filesystem::path directory(parameters.output_directory);
-      std::filesystem::create_directories(directory);
-      {
-        std::ostringstream text;
-        prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
-        write_file_atomically((directory / "parameters.prm").string(),
-                              text.str());
-      }
+      check_initial_state(problem);
 
       const MechanicalSystem &system = *problem.system;
       // MPI, where a part needs it: HDF5 output and Trilinos solvers.
@@ -269,27 +293,80 @@ namespace estep
 
       auto integrator = create_integrator(parameters, prm, system);
       integrator->initialize(parameters.start_time, problem.q0, problem.v0);
+      const auto *body = dynamic_cast<const ElasticBody *>(&system);
+      if (parameters.field_output_interval > 0. && body == nullptr)
+        throw std::runtime_error("Output/Field output interval: the system <" +
+                                 system.name() + "> has no fields to write.");
 
       const double T0 =
         kinetic_energy(system, problem.q0.size() ? problem.v0 : Vector());
       const double  V0       = system.energy(problem.q0);
       const Momenta momenta0 = compute_momenta(system, problem.q0, problem.v0);
+      if (parameters.method == "energy stepping" &&
+          parameters.energy_step > std::abs(T0) + std::abs(V0))
+        std::cerr << "estep: warning: Time integration/Energy step: h = "
+                  << parameters.energy_step
+                  << " exceeds the initial energy scale |T| + |V| = "
+                  << std::abs(T0) + std::abs(V0)
+                  << " of the system: its terraces are coarser than the "
+                     "motion and the results say little.\n";
 
-      HistoryWriter  history((directory / "history.csv").string(), *integrator);
+      // Everything that input can make fail has been done: only now is the
+      // output directory touched, first with a summary saying "running", so
+      // that no reader takes an earlier run's summary for this one.
+      const std::filesystem::path directory(parameters.output_directory);
+      const std::string summary_file = (directory / "summary.json").string();
+      const auto        status_only  = [&](const std::string &status,
+                                   const std::string &message) {
+        return JsonObject()
+                 .add("estep version", ESTEP_VERSION)
+                 .add("status", status)
+                 .add("message", message)
+                 .add("system", system.name())
+                 .add("method", integrator->name())
+                 .add("start time", parameters.start_time)
+                 .add("end time", parameters.end_time)
+                 .to_string() +
+               "\n";
+      };
+      std::filesystem::create_directories(directory);
+      write_file_atomically(summary_file, status_only("running", ""));
+      {
+        std::ostringstream text;
+        prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+        write_file_atomically((directory / "parameters.prm").string(),
+                              text.str());
+      }
+
+      std::unique_ptr<HistoryWriter> history;
+      try
+        {
+          history = std::make_unique<HistoryWriter>(
+            (directory / "history.csv").string(), *integrator);
+        }
+      catch (const std::runtime_error &error)
+        {
+          // The output directory does not take the history (a full disk):
+          // the run cannot start.
+          try
+            {
+              write_file_atomically(summary_file,
+                                    status_only("failed", error.what()));
+            }
+          catch (const std::exception &)
+            {}
+          std::cerr << "estep: " << error.what() << '\n';
+          return exit_failed;
+        }
       TrajectoryNorm norm;
       StepHistogram  histogram;
       histogram.set_end_time(parameters.end_time);
-      std::vector<RunObserver *> observers = {&history, &histogram};
+      std::vector<RunObserver *> observers = {history.get(), &histogram};
       if (parameters.h1_norm)
         observers.push_back(&norm);
       std::unique_ptr<FieldOutput> fields;
       if (parameters.field_output_interval > 0.)
         {
-          const auto *body = dynamic_cast<const ElasticBody *>(&system);
-          if (body == nullptr)
-            throw std::runtime_error(
-              "Output/Field output interval: the system <" + system.name() +
-              "> has no fields to write.");
           fields =
             std::make_unique<FieldOutput>(*body,
                                           directory.string(),
@@ -323,7 +400,7 @@ namespace estep
       const TimeLoopResult result =
         run_time_loop(*integrator, settings, observers);
       progress.reset();
-      if (fields)
+      if (fields && result.status != RunStatus::failed)
         fields->finish();
 
       // The summary.
@@ -345,7 +422,8 @@ namespace estep
         .add("start time", parameters.start_time)
         .add("end time", parameters.end_time)
         .add("final time", result.final_time)
-        .add("wall seconds", result.wall_seconds);
+        .add("wall seconds", result.wall_seconds)
+        .add("peak memory [MiB]", peak_memory_mib());
       JsonObject counters;
       for (const Counter &counter : integrator->counters())
         counters.add(counter.first, counter.second);
@@ -391,9 +469,18 @@ namespace estep
         summary.add("h1 norm", norm.h1_norm());
       if (contact)
         summary.add("contact", contact->summary(problem.q0, problem.v0, q, v));
-      histogram.write((directory / "step_histogram.csv").string());
-      write_file_atomically((directory / "summary.json").string(),
-                            summary.to_string() + "\n");
+      try
+        {
+          histogram.write((directory / "step_histogram.csv").string());
+          write_file_atomically(summary_file, summary.to_string() + "\n");
+        }
+      catch (const std::exception &error)
+        {
+          if (result.status != RunStatus::failed)
+            throw;
+          // The disk that failed the run may not take the summary either.
+          std::cerr << "estep: " << error.what() << '\n';
+        }
 
       std::cout << "estep: " << integrator->name() << " on the "
                 << system.name() << ": " << to_string(result.status)
@@ -403,13 +490,20 @@ namespace estep
       if (contact)
         std::cout << "estep: " << contact->report(problem.q0, problem.v0, q, v)
                   << '\n';
-      if (result.status != RunStatus::completed)
+      std::cerr << (result.message.empty() ? "" : "estep: ") << result.message
+                << (result.message.empty() ? "" : "\n");
+      switch (result.status)
         {
-          std::cerr << "estep: " << result.message << '\n';
-          return result.status == RunStatus::unstable ? exit_unstable :
-                                                        exit_stalled;
+          case RunStatus::completed:
+            return exit_success;
+          case RunStatus::unstable:
+            return exit_unstable;
+          case RunStatus::stalled:
+            return exit_stalled;
+          case RunStatus::failed:
+            return exit_failed;
         }
-      return exit_success;
+      return exit_failed;
     }
   } // namespace
 
@@ -429,6 +523,12 @@ namespace estep
             if (argc == 2)
               throw std::runtime_error(
                 "estep ccd: no query file or directory given.");
+            if (std::string(argv[2]) == "--help" ||
+                std::string(argv[2]) == "-h")
+              {
+                std::cout << usage;
+                return exit_success;
+              }
             return contact::run_ccd_command(
               std::vector<std::string>(argv + 2, argv + argc), std::cout);
           }

@@ -99,6 +99,10 @@ namespace estep
       const std::vector<double> v_si =
         parse_points(prm.get("Initial velocities"), dim, "Initial velocities");
       prm.leave_subsection();
+      if (!(mass > 0.) || !(eps > 0.) || !(sigma > 0.))
+        throw std::runtime_error(
+          "Argon cluster: Particle mass, Epsilon over Boltzmann constant and "
+          "Sigma must be positive.");
       if (x_nm.size() != v_si.size())
         throw std::runtime_error(
           "Argon cluster: there are " + std::to_string(x_nm.size() / dim) +

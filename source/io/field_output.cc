@@ -117,8 +117,17 @@ namespace estep
     Implementation &self = *implementation;
     while (self.next_time <= integrator.time())
       {
-        write(integrator.dense_output(
-          std::max(self.next_time, integrator.previous_time())));
+        try
+          {
+            write(integrator.dense_output(
+              std::max(self.next_time, integrator.previous_time())));
+          }
+        catch (const std::runtime_error &error)
+          {
+            // A snapshot or the series file could not be written: the run
+            // stops with status failed.
+            throw OutputFailed(error.what());
+          }
         if (!(self.interval > 0.))
           {
             self.next_time = std::numeric_limits<double>::infinity();

@@ -10,6 +10,7 @@ namespace estep
   HistoryWriter::HistoryWriter(const std::string    &filename,
                                const TimeIntegrator &integrator)
     : integrator(integrator)
+    , filename(filename)
     , start_time(integrator.time())
     , out(filename)
     , smallest_step_since_row(std::numeric_limits<double>::infinity())
@@ -27,6 +28,10 @@ namespace estep
          integrator.mechanical_system().observable_names())
       out << ',' << name;
     out << '\n' << std::setprecision(16);
+    out.flush();
+    if (!out)
+      throw std::runtime_error("Cannot write the history file <" + filename +
+                               ">.");
   }
 
 
@@ -63,6 +68,9 @@ namespace estep
       out << ',' << x;
     out << '\n';
     out.flush();
+    if (!out)
+      throw OutputFailed("Writing a row of the history file <" + filename +
+                         "> failed (is the disk full?).");
   }
 
 

@@ -25,6 +25,8 @@ namespace estep
           return "unstable";
         case RunStatus::stalled:
           return "stalled";
+        case RunStatus::failed:
+          return "failed";
       }
     return "unknown";
   }
@@ -116,6 +118,11 @@ namespace estep
       {
         result.status  = RunStatus::stalled;
         result.message = stalled.what();
+      }
+    catch (const OutputFailed &failure)
+      {
+        result.status  = RunStatus::failed;
+        result.message = failure.what();
       }
     result.final_time   = integrator.time();
     result.wall_seconds = std::chrono::duration<double>(

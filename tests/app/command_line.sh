@@ -70,6 +70,7 @@ done
 grep -q '"status": "completed"' run/summary.json || fail "summary.json lacks status completed"
 grep -q '"final time": 2' run/summary.json || fail "summary.json lacks the final time"
 grep -q '"wall seconds"' run/summary.json || fail "summary.json lacks the wall time"
+grep -q '"peak memory \[MiB\]"' run/summary.json || fail "summary.json lacks the peak memory"
 [[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
 python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
 
@@ -106,6 +107,16 @@ expect 1 "Endtime" -- run.prm --set "Time integration/Endtime=1"
 expect 1 "no subsection <Nope>" -- run.prm --set "Nope/End time=1"
 expect 1 "expected the form" -- run.prm --set "End time"
 expect 1 "needs an argument" -- run.prm --set
+# Inputs that crashed deal.II's readers, and what they should say instead.
+echo "include self.prm" > self.prm
+expect 1 "Line <1> of file <self.prm>: including <self.prm> forms a cycle" -- self.prm
+python3 -c "print('[' * 20000 + ']' * 20000)" > deep.json
+expect 1 "deep.json> nests deeper than 64 levels" -- deep.json
+printf '\xEF\xBB\xBFset Output directory = bom\nsubsection Time integration\n  set End time = 0.5\nend\n' > bom.prm
+expect 0 "completed at t = 0.5" -- bom.prm
+expect 1 "Particle mass, Epsilon over Boltzmann constant and Sigma must be positive" -- run.prm -s "Argon cluster/Particle mass=0"
+# A run that fails at set-up leaves an earlier run in the same directory alone.
+expect 1 "has no fields to write" -- run.prm -s "Output/Field output interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"
 
 # A run that blows up: status unstable in summary.json, a clear message, exit code 2.
@@ -127,6 +138,18 @@ expect 3 "stalled at t = .* energy step h = 1e-05" -- "${cube[@]}" -s "Elastic b
 grep -q '"status": "stalled"' stalled/summary.json || fail "summary.json of a stalled run lacks status stalled"
 # A stiff cube whose reflections return within the round-off band of their level: it completes.
 expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisions=2" -s "Elastic body/Material/Mu=2e7" -s "Output directory=stiff"
+
+# An energy step above the system's energy scale: a warning that says the results mean little.
+expect 0 "warning: Time integration/Energy step: h = 100 exceeds the initial energy scale" -- run.prm -s "Time integration/Energy step=100" -s "Output directory=coarse"
+
+# An output that cannot be written (history.csv on a full device): status failed, exit code 4,
+# the file named; the summary written first says running, then failed.
+mkdir -p full && ln -sf /dev/full full/history.csv
+expect 4 "Cannot write the history file <full/history.csv>" -- run.prm -s "Output directory=full"
+grep -q '"status": "failed"' full/summary.json || fail "summary.json of a failed write lacks status failed"
+
+# The ccd subcommand has its own help.
+expect 0 "estep ccd FILE_OR_DIRECTORY" -- ccd --help
 
 # The colliding balls through the application (explicit Newmark with penalty contact).
 expect 0 "completed at t = 0.01" -- "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_newmark.prm" \

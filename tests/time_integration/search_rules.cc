@@ -271,22 +271,62 @@ namespace
     // climbs through it. The search reports the level reached at or before
     // the exact return s = 1e-7 after a few tens of intervals, instead of
     // bisecting the band's edge at round-off (before the rule it crawled
-    // there, 1e-17 per interval).
+    // there, 1e-17 per interval, and stalled). The enclosures bound no f'',
+    // so that no convexity rule can decide in its place.
     for (const bool mirrored : {false, true})
       {
         const PolynomialFlight flight =
-          mirrored ? PolynomialFlight({0., 1e-7, -1.}, true, 1e-14) :
-                     PolynomialFlight({1., -1e-7, 1.}, true, 1e-14);
+          mirrored ? PolynomialFlight({0., 1e-7, -1.}, false, 1e-14) :
+                     PolynomialFlight({1., -1e-7, 1.}, false, 1e-14);
         SearchStatistics statistics;
         const Crossing   crossing =
           search(flight,
                  mirror(Departure::from_upper_level, mirrored),
                  1e-3,
                  &statistics);
+        // Reached where f is on the level to within the band, never beyond
+        // it (f leaves the band at s = 1.4e-7, where the crawl was).
+        const double beyond = (mirrored ? -1. : 1.) *
+                              (flight.value(crossing.s) - (mirrored ? 0. : 1.));
         EXPECT_EQ(crossing.direction, mirrored ? -1 : +1);
         EXPECT_GT(crossing.s, 0.);
-        EXPECT_LE(crossing.s, 1e-7 * (1. + 1e-9));
+        EXPECT_LE(beyond, 4e-14);
         EXPECT_LT(statistics.n_enclosures, 1000u);
+      }
+  }
+
+  TEST(SearchRules, AFlightHeadingBackThroughItsDepartureLevelCrossesItAtOnce)
+  {
+    // Said to leave 1 downwards, the flight f = 1 + 1e-3 s moves up through
+    // it from s = 0 (the jump's slope and the flight's disagree in sign at
+    // round-off): the level is reached at s = 0, not where f leaves the band
+    // (4e-9 later).
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({0., -1e-3}, false, 1e-12) :
+                     PolynomialFlight({1., 1e-3}, false, 1e-12);
+        const Crossing crossing =
+          search(flight, mirror(Departure::from_upper_level, mirrored), 1.);
+        EXPECT_EQ(crossing.direction, mirrored ? -1 : +1);
+        EXPECT_EQ(crossing.s, 0.);
+      }
+  }
+
+  TEST(SearchRules, ATangentialDepartureIsNotACrossing)
+  {
+    // Leaving 0 with zero slope, f = s^2: the departure root at s = 0 is not
+    // returned however the intervals near it are decided; 1 is reached at 1.
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({1., 0., -1.}, true) :
+                     PolynomialFlight({0., 0., 1.}, true);
+        expect_crossing(search(flight,
+                               mirror(Departure::from_lower_level, mirrored),
+                               2.),
+                        mirrored ? -1 : +1,
+                        1.);
       }
   }
 

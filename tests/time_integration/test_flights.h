@@ -15,8 +15,10 @@ namespace estep::testing
   /**
    * f(s) = sum_k c[k] s^k. With @p with_curvature its enclosures also hold
    * f'' and the sample of f, f' at the centre, as the elastic body's do. It
-   * claims the round-off @p value_tolerance (its enclosures are widened by
-   * as much).
+   * claims the round-off @p value_tolerance, and its enclosures are widened by
+   * as much (the second-order form by 1e-13 (1 + |f(m)| + |f'(m)|) more, of
+   * which it claims 1e-13: a flight's enclosures near a level must fit in the
+   * search's band of four value tolerances, as the elastic body's do).
    */
   class PolynomialFlight : public FreeFlight
   {
@@ -53,7 +55,7 @@ namespace estep::testing
     double
     value_tolerance() const override
     {
-      return tolerance;
+      return tolerance + (with_curvature ? 1e-13 : 0.);
     }
 
     LineEnclosure

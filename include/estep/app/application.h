@@ -14,7 +14,10 @@ namespace estep
     /** The run ended unstable (blow-up); summary.json says so. */
     exit_unstable = 2,
     /** The run stalled (could not advance in time); summary.json says so. */
-    exit_stalled = 3
+    exit_stalled = 3,
+    /** An output could not be written (e.g. a full disk); summary.json says
+     * so where it still can be written. */
+    exit_failed = 4
   };
 
   /**

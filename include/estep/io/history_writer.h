@@ -15,7 +15,8 @@ namespace estep
    * so far, the smallest and largest step since the previous row (the steps
    * ending after it up to the first one reaching the row's time; the step in
    * progress if none ended), and the system's own observables. Rows are flushed
-   * as they are written, so a run that stops early leaves a valid file.
+   * as they are written, so a run that stops early leaves a valid file; a row
+   * that cannot be written (a full disk) throws OutputFailed naming the file.
    */
   class HistoryWriter : public RunObserver
   {
@@ -33,6 +34,7 @@ namespace estep
 
   private:
     const TimeIntegrator &integrator;
+    const std::string     filename;
     const double          start_time;
     std::ofstream         out;
     /** Extreme steps since the last row; min > max when none ended since. */

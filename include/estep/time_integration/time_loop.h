@@ -34,12 +34,23 @@ namespace estep
     unstable,
     /** The integrator could not advance (e.g. a search crawling at round-off).
      */
-    stalled
+    stalled,
+    /** An output could not be written (e.g. a full disk). */
+    failed
   };
 
-  /** Text of a status for output ("completed", "unstable", "stalled"). */
+  /** Text of a status for output ("completed", "unstable", "stalled",
+   * "failed"). */
   std::string
   to_string(const RunStatus status);
+
+  /** Thrown by an observer whose output cannot be written; the run ends with
+   * status failed. */
+  class OutputFailed : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
 
   /** Settings of the time loop. */
   struct TimeLoopSettings

@@ -1,0 +1,26 @@
+#ifndef estep_app_input_file_h
+#define estep_app_input_file_h
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace estep
+{
+  /**
+   * Read the input file @p filename (.prm, .json or .xml) into @p prm, after
+   * the checks that deal.II's readers cannot survive or report clearly: a
+   * .prm file may begin with a UTF-8 byte-order mark (it is dropped); its
+   * `include` lines (resolved as deal.II resolves them, from the working
+   * directory) may neither form a cycle nor nest deeper than 32 files; a JSON
+   * file may not nest deeper than 64 levels. Each violation is a
+   * std::runtime_error naming the file and line.
+   */
+  void
+  read_input_file(dealii::ParameterHandler &prm, const std::string &filename);
+} // namespace estep
+
+#endif

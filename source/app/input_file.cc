@@ -1,0 +1,134 @@
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/app/input_file.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr unsigned int max_include_depth = 32;
+    constexpr unsigned int max_json_depth    = 64;
+    const std::string      byte_order_mark   = "\xEF\xBB\xBF";
+
+    std::string
+    read_text(const std::string &filename)
+    {
+      std::ifstream in(filename, std::ios::binary);
+      if (!in)
+        throw std::runtime_error("The input file <" + filename +
+                                 "> cannot be opened.");
+      std::ostringstream text;
+      text << in.rdbuf();
+      std::string result = text.str();
+      if (result.compare(0, byte_order_mark.size(), byte_order_mark) == 0)
+        result.erase(0, byte_order_mark.size());
+      return result;
+    }
+
+    bool
+    ends_with(const std::string &name, const std::string &extension)
+    {
+      return name.size() >= extension.size() &&
+             name.compare(name.size() - extension.size(),
+                          extension.size(),
+                          extension) == 0;
+    }
+
+    /** Follow the include lines of a .prm file: no cycle, bounded depth. */
+    void
+    check_includes(const std::string        &filename,
+                   std::vector<std::string> &chain)
+    {
+      std::error_code    error;
+      const std::string  canonical =
+        std::filesystem::weakly_canonical(filename, error).string();
+      std::istringstream lines(read_text(filename));
+      std::string        line;
+      for (unsigned int number = 1; std::getline(lines, line); ++number)
+        {
+          line = dealii::Utilities::trim(line);
+          if (line.rfind("include ", 0) != 0 && line.rfind("INCLUDE ", 0) != 0)
+            continue;
+          const std::string target = dealii::Utilities::trim(line.substr(8));
+          const std::string where  = "Line <" + std::to_string(number) +
+                                    "> of file <" + filename + ">: ";
+          const std::string target_canonical =
+            std::filesystem::weakly_canonical(target, error).string();
+          for (const std::string &open : chain)
+            if (open == target_canonical || target_canonical == canonical)
+              throw std::runtime_error(where + "including <" + target +
+                                       "> forms a cycle of includes.");
+          if (chain.size() >= max_include_depth)
+            throw std::runtime_error(where + "includes nest deeper than " +
+                                     std::to_string(max_include_depth) +
+                                     " files.");
+          if (!std::filesystem::is_regular_file(target))
+            throw std::runtime_error(where + "the included file <" + target +
+                                     "> does not exist or is not a file.");
+          chain.push_back(target_canonical);
+          check_includes(target, chain);
+          chain.pop_back();
+        }
+    }
+
+    /** The deepest nesting of brackets outside strings. */
+    unsigned int
+    json_depth(const std::string &text)
+    {
+      unsigned int depth = 0, deepest = 0;
+      bool         in_string = false, escaped = false;
+      for (const char c : text)
+        {
+          if (in_string)
+            {
+              if (escaped)
+                escaped = false;
+              else if (c == '\\')
+                escaped = true;
+              else if (c == '"')
+                in_string = false;
+            }
+          else if (c == '"')
+            in_string = true;
+          else if (c == '{' || c == '[')
+            deepest = std::max(deepest, ++depth);
+          else if ((c == '}' || c == ']') && depth > 0)
+            --depth;
+        }
+      return deepest;
+    }
+  } // namespace
+
+
+
+  void
+  read_input_file(dealii::ParameterHandler &prm, const std::string &filename)
+  {
+    if (ends_with(filename, ".json"))
+      {
+        if (json_depth(read_text(filename)) > max_json_depth)
+          throw std::runtime_error("The input file <" + filename +
+                                   "> nests deeper than " +
+                                   std::to_string(max_json_depth) +
+                                   " levels: it is not a parameter file.");
+        prm.parse_input(filename);
+        return;
+      }
+    if (ends_with(filename, ".xml"))
+      {
+        prm.parse_input(filename);
+        return;
+      }
+    std::vector<std::string> chain;
+    check_includes(filename, chain);
+    std::istringstream text(read_text(filename));
+    prm.parse_input(text, filename);
+  }
+} // namespace estep
