@@ -96,6 +96,53 @@ namespace
                     s0 - w * std::sqrt(std::log(A / 0.5)));
   }
 
+  TEST(SearchRules, AnEnclosureThatProvesNothingIsNeverDismissed)
+  {
+    // f = 0.5 + s, but its enclosures are NaN over [0.3, 0.31] (as where V is
+    // not finite): the search may not pass there, so it reports the upper
+    // level at 0.3 at the latest instead of its crossing at 0.5.
+    class Blind : public PolynomialFlight
+    {
+    public:
+      Blind()
+        : PolynomialFlight({0.5, 1.})
+      {}
+      LineEnclosure
+      enclose(const double a, const double b) const override
+      {
+        if (b >= 0.3 && a <= 0.31)
+          return {{NAN, NAN}, {NAN, NAN}};
+        return PolynomialFlight::enclose(a, b);
+      }
+    };
+    const Crossing crossing = search(Blind(), Departure::interior, 1.);
+    EXPECT_EQ(crossing.direction, +1);
+    EXPECT_LE(crossing.s, 0.3);
+  }
+
+  // -- Resolution: an interval still undecided at the resolution of s is a
+  // crossing at its left end, never dismissed.
+
+  TEST(SearchRules, ANearMissWithinTheRoundOffIsReportedAsATouch)
+  {
+    // f = 1 - 1e-15 - (s - 0.25)^2 peaks 1e-15 below the level, inside the
+    // round-off the flight claims (1e-14, by which its enclosures widen): no
+    // enclosure decides the intervals around the peak, and the search reports
+    // a touch there (early, never late), not the crossing of 0 at 1.24.
+    for (const bool mirrored : {false, true})
+      {
+        const double           top = 1. - 1e-15;
+        const PolynomialFlight flight =
+          mirrored ?
+            PolynomialFlight({1. - (top - 0.0625), -0.5, 1.}, false, 1e-14) :
+            PolynomialFlight({top - 0.0625, 0.5, -1.}, false, 1e-14);
+        const Crossing crossing = search(flight, Departure::interior, 2.);
+        EXPECT_EQ(crossing.direction, mirrored ? -1 : +1);
+        EXPECT_LE(crossing.s, 0.25);
+        EXPECT_GT(crossing.s, 0.25 - 1e-6);
+      }
+  }
+
   // -- Monotonicity: where f' has one sign only the level ahead can be
   // reached, and only if f(b) reaches it.
 
