@@ -19,13 +19,21 @@ using namespace estep::contact;
 namespace
 {
   const std::string query_dir = ESTEP_CCD_QUERY_DIR;
+
+  /** Why a test fails when the sample queries are missing. */
+  std::string
+  missing_query_dir_message()
+  {
+    return "the CCD sample queries are missing: directory " + query_dir +
+           " (../shared/data/ccd-sample-queries relative to the repository "
+           "root) not found";
+  }
 } // namespace
 
 TEST(ContinuousCollision, SampleQueriesHaveNoFalseNegatives)
 {
   namespace fs = std::filesystem;
-  if (!fs::is_directory(query_dir))
-    GTEST_SKIP() << "sample queries not found at " << query_dir;
+  ASSERT_TRUE(fs::is_directory(query_dir)) << missing_query_dir_message();
   std::size_t n = 0, n_pos = 0, n_fn = 0, n_fp = 0, n_capped = 0;
   std::size_t n_generic = 0, n_generic_pos = 0, n_generic_fp = 0;
   for (const auto &entry : fs::recursive_directory_iterator(query_dir))
@@ -249,6 +257,7 @@ TEST(ContinuousCollision, TimeIsNeverLate)
 TEST(ContinuousCollision, CommandCountsAndErrors)
 {
   namespace fs = std::filesystem;
+  EXPECT_TRUE(fs::is_directory(query_dir)) << missing_query_dir_message();
   if (fs::is_directory(query_dir))
     {
       std::ostringstream out;
