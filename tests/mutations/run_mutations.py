@@ -16,6 +16,7 @@ import argparse
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -52,11 +53,20 @@ def read_catalogue(path):
 
 
 def run(command, cwd, log=None, timeout=None):
-    result = subprocess.run(command, cwd=cwd, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True, timeout=timeout)
+    """The exit code of command, or None if it ran out of time (then it and
+    its children are killed)."""
+    process = subprocess.Popen(command, cwd=cwd, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    try:
+        output, _ = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        output, _ = process.communicate()
+        output += f"\n(killed after {timeout} s)"
     if log is not None:
-        log.write(f"$ {' '.join(command)}\n{result.stdout}\n")
-    return result.returncode
+        log.write(f"$ {' '.join(command)}\n{output}\n")
+        log.flush()
+    return process.returncode if process.returncode >= 0 else None
 
 
 def sync_tree(source, destination):
@@ -94,6 +104,9 @@ def main():
         help="scratch directory (source copy and build; reused between runs)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count())
     parser.add_argument("--only", nargs="*", help="run only these mutation ids")
+    parser.add_argument("--time-limit", type=float, default=240.,
+                        help="seconds the tests of one mutation may run; a mutation that makes "
+                        "them run longer counts as caught (timed out)")
     args = parser.parse_args()
 
     mutations = read_catalogue(CATALOGUE)
@@ -119,15 +132,15 @@ def main():
     if unknown:
         sys.exit(f"unknown tests in {CATALOGUE.name}: {', '.join(unknown)}")
 
-    def build_and_test(tests):
+    def build_and_test(tests, time_limit=None):
         wanted = sorted({targets[t] for t in tests} | {"estep_app"})
         if run(["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *wanted],
                scratch, log) != 0:
             return "does not build"
         pattern = "^(" + "|".join(t.replace("+", "\\+") for t in tests) + ")$"
         code = run(["ctest", "-R", pattern, "-j", str(args.jobs), "--output-on-failure"],
-                   build, log)
-        return "passed" if code == 0 else "failed"
+                   build, log, time_limit)
+        return "timed out" if code is None else "passed" if code == 0 else "failed"
 
     start = time.time()
     print(f"Baseline: building and running the {len({t for m in mutations for t in m['tests']})} "
@@ -146,17 +159,18 @@ def main():
         else:
             path.write_text(original.replace(m["find"], m["replace"]))
             try:
-                outcome = build_and_test(m["tests"])
+                outcome = build_and_test(m["tests"], args.time_limit)
             finally:
                 path.write_text(original)
-            verdict = {"failed": "caught", "passed": "SURVIVED"}.get(outcome, outcome)
+            verdict = {"failed": "caught", "timed out": "caught (timed out)",
+                       "passed": "SURVIVED"}.get(outcome, outcome)
         rows.append((m["id"], verdict, time.time() - t0, " ".join(m["tests"])))
         print(f"  {m['id']:<48} {verdict:<15} {time.time() - t0:6.1f} s", flush=True)
 
     print(f"\n| mutation | verdict | seconds | tests |\n|---|---|---|---|")
     for row in rows:
         print(f"| {row[0]} | {row[1]} | {row[2]:.0f} | {row[3]} |")
-    caught = sum(1 for r in rows if r[1] == "caught")
+    caught = sum(1 for r in rows if r[1].startswith("caught"))
     print(f"\n{caught} of {len(rows)} mutations caught in {time.time() - start:.0f} s "
           f"(log: {scratch}/mutations.log)")
     return 0 if caught == len(rows) else 1
