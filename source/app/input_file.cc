@@ -43,11 +43,10 @@ namespace estep
 
     /** Follow the include lines of a .prm file: no cycle, bounded depth. */
     void
-    check_includes(const std::string        &filename,
-                   std::vector<std::string> &chain)
+    check_includes(const std::string &filename, std::vector<std::string> &chain)
     {
-      std::error_code    error;
-      const std::string  canonical =
+      std::error_code   error;
+      const std::string canonical =
         std::filesystem::weakly_canonical(filename, error).string();
       std::istringstream lines(read_text(filename));
       std::string        line;

@@ -169,8 +169,14 @@ namespace estep
                                                           0;
     // The band around a level that counts as sitting on it: a few times the
     // flight's round-off, so that enclosures (widened by that round-off
-    // themselves) can fit inside.
-    const double tolerance = 4. * flight.value_tolerance();
+    // themselves) can fit inside, and never less than a few units of
+    // round-off of the level itself, which no computed value of f can
+    // resolve (a flight that claims exact values, value_tolerance() = 0, but
+    // widens its enclosures by their rounding would otherwise crawl away from
+    // a level it departs from tangentially, one resolution at a time).
+    const double tolerance =
+      4. * std::max(flight.value_tolerance(),
+                    4. * epsilon * std::max(std::abs(c0), std::abs(c1)));
     // f = +infinity where the configuration is inadmissible (beyond the
     // flight's admissible limit); such intervals are never enclosed.
     const auto value_at = [&](const double s) {

@@ -67,7 +67,7 @@ namespace estep
    * round-off of f (the energy step below the round-off of V, or V not
    * finite) and gives up with SearchStalled.
    */
-  constexpr std::uint64_t max_intervals_examined = std::uint64_t(1) << 16;
+  constexpr std::uint64_t max_intervals_examined = std::uint64_t(1) << 20;
 
   /** Thrown by find_first_crossing() when it examined max_intervals_examined
    * intervals without deciding. */
@@ -110,7 +110,8 @@ namespace estep
    * of the flight parameter) is reported as a crossing at its left end: the
    * search errs early, never late;
    * - while f stays within the band of the departure level (four times the
-   *   flight's value tolerance), a proven slope back through that level (a
+   *   flight's value tolerance, at least 16 units of round-off of the level),
+   *   a proven slope back through that level (a
    *   return shallower than the round-off of f) reports the departure level
    *   as reached: where f(b) lies beyond it, at the latest;
    * - the search always ends: after max_intervals_examined intervals it
