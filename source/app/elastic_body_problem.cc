@@ -10,6 +10,8 @@
 #include <estep/fem/tangent_stiffness.h>
 #include <estep/materials/neo_hookean.h>
 
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -183,18 +185,41 @@ namespace estep
               constants[parts[0]] =
                 dealii::Utilities::string_to_double(parts[1]);
             }
-          velocity.initialize("x,y,z",
-                              dealii::Utilities::split_string_list(expression,
-                                                                   ';'),
-                              constants);
+          // deal.II parses on the first evaluation and prints its diagnosis
+          // of a bad expression (several lines) before it throws: keep the
+          // diagnosis and say it in one line naming the entry.
+          std::ostringstream    diagnosis;
+          std::streambuf *const cerr_buffer =
+            std::cerr.rdbuf(diagnosis.rdbuf());
           problem.v0.reinit(problem.q0.size());
-          for (unsigned int i = 0; i < body->n_vertices(); ++i)
+          try
             {
-              const dealii::Point<3> X(problem.q0[3 * i],
-                                       problem.q0[3 * i + 1],
-                                       problem.q0[3 * i + 2]);
-              for (unsigned int c = 0; c < 3; ++c)
-                problem.v0[3 * i + c] = velocity.value(X, c);
+              velocity.initialize(
+                "x,y,z",
+                dealii::Utilities::split_string_list(expression, ';'),
+                constants);
+              for (unsigned int i = 0; i < body->n_vertices(); ++i)
+                {
+                  const dealii::Point<3> X(problem.q0[3 * i],
+                                           problem.q0[3 * i + 1],
+                                           problem.q0[3 * i + 2]);
+                  for (unsigned int c = 0; c < 3; ++c)
+                    problem.v0[3 * i + c] = velocity.value(X, c);
+                }
+              std::cerr.rdbuf(cerr_buffer);
+            }
+          catch (const dealii::ExceptionBase &)
+            {
+              std::cerr.rdbuf(cerr_buffer);
+              std::string        message;
+              std::istringstream lines(diagnosis.str());
+              for (std::string line; std::getline(lines, line);)
+                if (line.rfind("Message:", 0) == 0)
+                  message = dealii::Utilities::trim(line.substr(8));
+              throw std::runtime_error(
+                "Elastic body/Initial velocity/Function expression: <" +
+                expression + "> cannot be evaluated" +
+                (message.empty() ? std::string(".") : ": " + message + "."));
             }
         }
       prm.leave_subsection();

@@ -115,6 +115,10 @@ expect 1 "deep.json> nests deeper than 64 levels" -- deep.json
 printf '\xEF\xBB\xBFset Output directory = bom\nsubsection Time integration\n  set End time = 0.5\nend\n' > bom.prm
 expect 0 "completed at t = 0.5" -- bom.prm
 expect 1 "Particle mass, Epsilon over Boltzmann constant and Sigma must be positive" -- run.prm -s "Argon cluster/Particle mass=0"
+cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=1"
+      -s "Time integration/End time=0.1" -s "Output/Field output interval=0")
+expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
+expect 1 "initial velocity of the elastic body is not finite" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
 expect 1 "has no fields to write" -- run.prm -s "Output/Field output interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"
@@ -132,8 +136,6 @@ expect 1 "Field output interval: would write more than" -- run.prm -s "Output/Fi
 
 # A run whose crossing search crawls at round-off (V overflows) ends as stalled, exit code 3,
 # naming the time and the energy step (the cap on the search's work, not a hang).
-cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=1"
-      -s "Time integration/End time=0.1" -s "Output/Field output interval=0")
 expect 3 "stalled at t = .* energy step h = 1e-05" -- "${cube[@]}" -s "Elastic body/Material/Mu=1e300" -s "Output directory=stalled"
 grep -q '"status": "stalled"' stalled/summary.json || fail "summary.json of a stalled run lacks status stalled"
 # A stiff cube whose reflections return within the round-off band of their level: it completes.
