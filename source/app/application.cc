@@ -9,6 +9,7 @@
 #include <estep/app/problem.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
+#include <estep/base/exception_text.h>
 #include <estep/contact/ccd_command.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/implicit/create_implicit_integrator.h>
@@ -116,34 +117,6 @@ namespace estep
       return command;
     }
 
-    /** The additional information of a deal.II exception, without its source
-     * location. */
-    std::string
-    deal_ii_message(const dealii::ExceptionBase &exception)
-    {
-      std::ostringstream info;
-      exception.print_info(info);
-      std::string text = dealii::Utilities::trim(info.str());
-      // Collapse deal.II's hard line breaks and indentation into one line of
-      // text.
-      std::string collapsed;
-      bool        space = false;
-      for (const char c : text)
-        {
-          if (c == '\n' || c == ' ' || c == '\t')
-            space = true;
-          else
-            {
-              if (space && !collapsed.empty())
-                collapsed += ' ';
-              collapsed += c;
-              space = false;
-            }
-        }
-      return collapsed.empty() ? std::string(exception.get_exc_name()) :
-                                 collapsed;
-    }
-
     /** Apply one "Section/Sub/Entry=value" override. */
     void
     apply_override(dealii::ParameterHandler &prm, const std::string &text)
@@ -176,7 +149,7 @@ namespace estep
           for (unsigned int i = 0; i < sections.size(); ++i)
             prm.leave_subsection();
           throw std::runtime_error("--set \"" + text +
-                                   "\": " + deal_ii_message(exception));
+                                   "\": " + one_line_message(exception));
         }
       for (unsigned int i = 0; i < sections.size(); ++i)
         prm.leave_subsection();
@@ -562,7 +535,7 @@ namespace estep
       }
     catch (const dealii::ExceptionBase &exception)
       {
-        std::cerr << "estep: error: " << deal_ii_message(exception) << '\n';
+        std::cerr << "estep: error: " << one_line_message(exception) << '\n';
       }
     catch (const std::exception &exception)
       {

@@ -3,6 +3,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/meshes.h>
 
@@ -96,7 +97,7 @@ namespace estep
         AssertThrow(false,
                     dealii::ExcMessage(std::string("make_ball_mesh: gmsh "
                                                    "failed: ") +
-                                       e.what()));
+                                       one_line_message(e)));
       }
     catch (...)
       {

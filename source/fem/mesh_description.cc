@@ -7,6 +7,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
 
@@ -55,7 +56,7 @@ namespace estep
                       dealii::ExcMessage("Mesh: the deal.II generator '" +
                                          d.generator + "' with arguments '" +
                                          d.arguments +
-                                         "' failed: " + e.what()));
+                                         "' failed: " + one_line_message(e)));
         }
       hex.refine_global(d.n_refinements);
     }
@@ -170,9 +171,9 @@ namespace estep
         catch (const std::exception &e)
           {
             AssertThrow(false,
-                        dealii::ExcMessage("Mesh: cannot read the gmsh file '" +
-                                           d.file_name +
-                                           "' as a .msh mesh: " + e.what()));
+                        dealii::ExcMessage(
+                          "Mesh: cannot read the gmsh file '" + d.file_name +
+                          "' as a .msh mesh: " + one_line_message(e)));
           }
       }
     else

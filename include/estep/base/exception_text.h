@@ -1,0 +1,19 @@
+#ifndef estep_base_exception_text_h
+#define estep_base_exception_text_h
+
+#include <exception>
+#include <string>
+
+namespace estep
+{
+  /**
+   * What an exception says, in one line: for a deal.II exception its
+   * additional information without the source location and the violated
+   * condition (the part written for its user, not its developer), for any
+   * other its what().
+   */
+  std::string
+  one_line_message(const std::exception &exception);
+} // namespace estep
+
+#endif

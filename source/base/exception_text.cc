@@ -1,0 +1,38 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/base/exception_text.h>
+
+#include <sstream>
+
+namespace estep
+{
+  std::string
+  one_line_message(const std::exception &exception)
+  {
+    std::string text = exception.what();
+    if (const auto *deal_ii =
+          dynamic_cast<const dealii::ExceptionBase *>(&exception))
+      {
+        std::ostringstream info;
+        deal_ii->print_info(info);
+        text = info.str();
+        if (dealii::Utilities::trim(text).empty())
+          text = deal_ii->get_exc_name();
+      }
+    // Collapse hard line breaks and indentation into single spaces.
+    std::string collapsed;
+    bool        space = false;
+    for (const char c : text)
+      if (c == '\n' || c == ' ' || c == '\t')
+        space = true;
+      else
+        {
+          if (space && !collapsed.empty())
+            collapsed += ' ';
+          collapsed += c;
+          space = false;
+        }
+    return collapsed;
+  }
+} // namespace estep
