@@ -28,6 +28,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -62,7 +63,8 @@ namespace estep
       "the directory named by 'set Output directory'.\n"
       "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
       "stalled (its event search could not advance at round-off), 4 an output could\n"
-      "not be written (e.g. a full disk).\n";
+      "not be written (e.g. a full disk), 128 + the signal's number when SIGINT or\n"
+      "SIGTERM ended the run (130, 143; summary.json says interrupted).\n";
 
     /** What the command line asks for. */
     struct CommandLine
@@ -370,8 +372,17 @@ namespace estep
       settings.end_time        = parameters.end_time;
       settings.output_interval = parameters.history_interval;
       settings.blowup_factor   = parameters.blowup_factor;
+      // SIGINT and SIGTERM end the run after the current step, with its
+      // summary (status interrupted).
+      const auto interrupt = [](const int signal) {
+        request_interruption(signal);
+      };
+      std::signal(SIGINT, interrupt);
+      std::signal(SIGTERM, interrupt);
       const TimeLoopResult result =
         run_time_loop(*integrator, settings, observers);
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
       progress.reset();
       if (fields && result.status != RunStatus::failed)
         fields->finish();
@@ -475,6 +486,8 @@ namespace estep
             return exit_stalled;
           case RunStatus::failed:
             return exit_failed;
+          case RunStatus::interrupted:
+            return 128 + result.signal;
         }
       return exit_failed;
     }

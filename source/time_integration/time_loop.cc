@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <sstream>
 
 namespace estep
@@ -27,6 +28,8 @@ namespace estep
           return "stalled";
         case RunStatus::failed:
           return "failed";
+        case RunStatus::interrupted:
+          return "interrupted";
       }
     return "unknown";
   }
@@ -35,10 +38,21 @@ namespace estep
 
   namespace
   {
+    /** Set by request_interruption(), read by the time loop. */
+    volatile std::sig_atomic_t interruption = 0;
+
     /** Steps in a row that leave the time where it is before the run is
      * declared stalled (events at one instant are legitimate, a few). */
     constexpr unsigned int max_steps_in_place = 10000;
   } // namespace
+
+
+
+  void
+  request_interruption(const int signal) noexcept
+  {
+    interruption = signal;
+  }
 
 
 
@@ -107,6 +121,16 @@ namespace estep
             for (RunObserver *observer : observers)
               observer->after_step(integrator);
             emit_outputs_until(integrator.time());
+            if (interruption != 0)
+              {
+                result.status = RunStatus::interrupted;
+                result.signal = interruption;
+                std::ostringstream message;
+                message << "Interrupted by signal " << result.signal
+                        << " at t = " << integrator.time() << ".";
+                result.message = message.str();
+                break;
+              }
           }
       }
     catch (const UnstableRun &unstable)

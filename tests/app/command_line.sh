@@ -151,6 +151,17 @@ mkdir -p full && ln -sf /dev/full full/history.csv
 expect 4 "Cannot write the history file <full/history.csv>" -- run.prm -s "Output directory=full"
 grep -q '"status": "failed"' full/summary.json || fail "summary.json of a failed write lacks status failed"
 
+# SIGTERM ends a run after its current step with its summary (status interrupted), exit 143.
+"$ESTEP" run.prm -s "Output directory=killed" -s "Time integration/End time=1e7" > /dev/null 2>&1 &
+pid=$!
+for _ in $(seq 50); do grep -q '"status": "running"' killed/summary.json 2> /dev/null && break; sleep 0.1; done
+sleep 0.3
+kill -TERM $pid
+wait $pid
+rc=$?
+[[ $rc == 143 ]] || fail "a run ended by SIGTERM exited with $rc, expected 143"
+grep -q '"status": "interrupted"' killed/summary.json || fail "summary.json of an interrupted run lacks status interrupted"
+
 # The ccd subcommand has its own help.
 expect 0 "estep ccd FILE_OR_DIRECTORY" -- ccd --help
 

@@ -18,6 +18,7 @@ namespace estep
     /** An output could not be written (e.g. a full disk); summary.json says
      * so where it still can be written. */
     exit_failed = 4
+    // A run ended by SIGINT or SIGTERM exits with 128 + the signal's number.
   };
 
   /**

@@ -36,11 +36,13 @@ namespace estep
      */
     stalled,
     /** An output could not be written (e.g. a full disk). */
-    failed
+    failed,
+    /** Stopped on request (a signal such as SIGINT or SIGTERM). */
+    interrupted
   };
 
   /** Text of a status for output ("completed", "unstable", "stalled",
-   * "failed"). */
+   * "failed", "interrupted"). */
   std::string
   to_string(const RunStatus status);
 
@@ -72,9 +74,18 @@ namespace estep
   {
     RunStatus   status = RunStatus::completed;
     std::string message;
-    double      final_time   = 0.;
-    double      wall_seconds = 0.;
+    /** The signal that interrupted the run, if one did. */
+    int    signal       = 0;
+    double final_time   = 0.;
+    double wall_seconds = 0.;
   };
+
+  /**
+   * Ask a running time loop to stop after its current step, reporting @p
+   * signal. Async-signal-safe: meant for a signal handler.
+   */
+  void
+  request_interruption(const int signal) noexcept;
 
   /**
    * The one time loop of estep: step the initialised @p integrator to the end
