@@ -18,6 +18,7 @@
 #include <estep/io/history_writer.h>
 #include <estep/io/json_writer.h>
 #include <estep/io/progress_line.h>
+#include <estep/io/progress_log.h>
 #include <estep/io/step_histogram.h>
 #include <estep/io/trajectory_norm.h>
 #include <estep/systems/contact_system.h>
@@ -359,12 +360,23 @@ namespace estep
           observers.push_back(contact.get());
         }
       std::unique_ptr<ProgressLine> progress;
-      if (parameters.progress == "on" ||
-          (parameters.progress == "auto" && ProgressLine::stderr_is_terminal()))
+      std::unique_ptr<ProgressLog>  log;
+      if (parameters.progress != "off")
         {
-          progress = std::make_unique<ProgressLine>(parameters.start_time,
-                                                    parameters.end_time);
-          observers.push_back(progress.get());
+          const bool terminal =
+            parameters.progress == "on" || ProgressLine::stderr_is_terminal();
+          if (terminal)
+            {
+              progress = std::make_unique<ProgressLine>(parameters.start_time,
+                                                        parameters.end_time);
+              observers.push_back(progress.get());
+            }
+          log = std::make_unique<ProgressLog>((directory / "log.txt").string(),
+                                              parameters.start_time,
+                                              parameters.end_time,
+                                              parameters.progress_interval,
+                                              !terminal);
+          observers.push_back(log.get());
         }
 
       TimeLoopSettings settings;
@@ -386,6 +398,8 @@ namespace estep
       progress.reset();
       if (fields && result.status != RunStatus::failed)
         fields->finish();
+      if (log && result.status != RunStatus::failed)
+        log->finish(*integrator, to_string(result.status));
 
       // The summary.
       const Vector &q        = integrator->position();

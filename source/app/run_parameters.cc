@@ -90,8 +90,16 @@ namespace estep
         "Progress",
         "auto",
         Selection("auto|on|off"),
-        "Show a progress line on standard error: auto shows it when "
-        "standard error is a terminal.");
+        "Progress reports. auto: on a terminal (standard error) a line "
+        "rewritten in place; otherwise (a batch job) a line every Progress "
+        "interval on standard output. on: the line rewritten in place. "
+        "off: none. Unless off, the periodic lines also go to log.txt in "
+        "the output directory, with a last line saying how the run ended.");
+      prm.declare_entry(
+        "Progress interval",
+        "10",
+        Double(0.1, max),
+        "Wall-clock seconds between two lines of the progress log.");
       prm.declare_entry(
         "H1 norm",
         "false",
@@ -137,6 +145,7 @@ namespace estep
     prm.enter_subsection("Output");
     history_interval      = prm.get_double("History interval");
     progress              = prm.get("Progress");
+    progress_interval     = prm.get_double("Progress interval");
     h1_norm               = prm.get_bool("H1 norm");
     field_output_interval = prm.get_double("Field output interval");
     field_output_format   = prm.get("Field output format");

@@ -68,6 +68,11 @@ for file in parameters.prm history.csv summary.json step_histogram.csv; do
   [[ -s run/$file ]] || fail "run/$file missing or empty"
 done
 grep -q '"status": "completed"' run/summary.json || fail "summary.json lacks status completed"
+tail -n 1 run/log.txt | grep -Eq "^estep: t = 2 \(100.0%\), [0-9]+ steps, .*, completed$" || fail "log.txt lacks its last line: $(tail -n 1 run/log.txt)"
+expect 0 "estep: t = [0-9.e+-]+ \([0-9.]+%\), [0-9]+ steps" -- run.prm -s "Output directory=batch" -s "Time integration/End time=1000" -s "Output/History interval=1" -s "Output/Progress interval=0.1"
+(( $(wc -l < batch/log.txt) >= 2 )) || fail "a batch run of several tenths of a second logged fewer than two lines"
+expect 0 "completed" -- run.prm -s "Output directory=nolog" -s "Output/Progress=off"
+[[ ! -e nolog/log.txt ]] || fail "Progress = off wrote log.txt"
 grep -q '"final time": 2' run/summary.json || fail "summary.json lacks the final time"
 grep -q '"wall seconds"' run/summary.json || fail "summary.json lacks the wall time"
 grep -q '"peak memory \[MiB\]"' run/summary.json || fail "summary.json lacks the peak memory"
@@ -161,6 +166,7 @@ wait $pid
 rc=$?
 [[ $rc == 143 ]] || fail "a run ended by SIGTERM exited with $rc, expected 143"
 grep -q '"status": "interrupted"' killed/summary.json || fail "summary.json of an interrupted run lacks status interrupted"
+tail -n 1 killed/log.txt | grep -q ", interrupted$" || fail "log.txt of an interrupted run does not say so"
 
 # The ccd subcommand has its own help.
 expect 0 "estep ccd FILE_OR_DIRECTORY" -- ccd --help

@@ -38,6 +38,7 @@ namespace estep
 
     double      history_interval;
     std::string progress;
+    double      progress_interval;
     bool        h1_norm;
     double      field_output_interval;
     std::string field_output_format;
