@@ -30,6 +30,7 @@ namespace
           {
             stepping.step(end_time);
             worst = std::max(worst, estep_test::terrace_excursion(stepping));
+            ASSERT_LT(worst, 1e-8) << "at t = " << stepping.time();
           }
         std::cout << "h = " << h << ", offset " << offset << ": "
                   << stepping.n_steps() << " steps, mean step "

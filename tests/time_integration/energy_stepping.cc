@@ -48,6 +48,9 @@ namespace
         worst_angular =
           std::max(worst_angular,
                    relative_difference(m0.angular[2], m.angular[2]));
+        // Stop at the first loss of conservation (a broken jump would
+        // otherwise run on through a meaningless trajectory).
+        ASSERT_LT(worst_energy, 1e-12) << "at step " << stepping.n_steps();
       }
     const auto counters = stepping.counters();
     std::cout << "after " << stepping.n_steps()
@@ -78,6 +81,7 @@ namespace
           {
             stepping.step(1e6);
             worst = std::max(worst, estep_test::terrace_excursion(stepping));
+            ASSERT_LT(worst, 1e-9) << "at step " << stepping.n_steps();
           }
         std::cout << "h = " << h << ", offset " << offset
                   << ": largest excursion beyond a level " << worst << " h\n";
