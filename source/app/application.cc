@@ -198,6 +198,31 @@ namespace estep
                                         parameters.time_step);
     }
 
+    /**
+     * Remove what an earlier run left in @p directory that this run might not
+     * overwrite, so that nothing there describes another run: field
+     * snapshots and their series files, the step histogram, the log. Only
+     * estep's own file names are touched.
+     */
+    void
+    remove_earlier_outputs(const std::filesystem::path &directory)
+    {
+      for (const char *name : {"solution.pvd",
+                               "solution.xdmf",
+                               "step_histogram.csv",
+                               "log.txt",
+                               "history.csv"})
+        std::filesystem::remove(directory / name);
+      const std::filesystem::path fields = directory / "fields";
+      if (std::filesystem::is_directory(fields))
+        for (const auto &entry : std::filesystem::directory_iterator(fields))
+          {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind("solution-", 0) == 0)
+              std::filesystem::remove(entry.path());
+          }
+    }
+
     /** The largest resident memory of this process so far, in MiB. */
     double
     peak_memory_mib()
@@ -307,12 +332,15 @@ namespace estep
       };
       std::filesystem::create_directories(directory);
       write_file_atomically(summary_file, status_only("running", ""));
-      {
-        std::ostringstream text;
-        prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
-        write_file_atomically((directory / "parameters.prm").string(),
-                              text.str());
-      }
+      remove_earlier_outputs(directory);
+      for (const auto &[name, style] :
+           {std::pair{"parameters.prm", dealii::ParameterHandler::ShortPRM},
+            std::pair{"parameters.json", dealii::ParameterHandler::ShortJSON}})
+        {
+          std::ostringstream text;
+          prm.print_parameters(text, style);
+          write_file_atomically((directory / name).string(), text.str());
+        }
 
       std::unique_ptr<HistoryWriter> history;
       try

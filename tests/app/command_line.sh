@@ -79,6 +79,17 @@ grep -q '"peak memory \[MiB\]"' run/summary.json || fail "summary.json lacks the
 [[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
 python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
 
+# parameters.json beside parameters.prm, a valid input itself.
+[[ -s run/parameters.json ]] || fail "run/parameters.json missing"
+"$ESTEP" --print-parameters run/parameters.json > /dev/null || fail "run/parameters.json cannot be read back"
+
+# A run into a directory holding another run's field snapshots removes them (and its series).
+mkdir -p stale/fields && touch stale/fields/solution-00007.vtu stale/solution.pvd stale/step_histogram.csv
+touch stale/fields/mine.txt
+expect 0 "completed" -- run.prm -s "Output directory=stale"
+[[ ! -e stale/fields/solution-00007.vtu && ! -e stale/solution.pvd ]] || fail "an earlier run's snapshots were left beside a new run"
+[[ -e stale/fields/mine.txt ]] || fail "a file that is not estep's was removed"
+
 # Overrides.
 expect 0 "completed at t = 1" -- run.prm --set "Time integration/End time=1" --set "Output directory=over"
 grep -q "End time *= 1" over/parameters.prm || fail "parameters.prm does not record the override"
