@@ -207,11 +207,8 @@ namespace estep
     void
     remove_earlier_outputs(const std::filesystem::path &directory)
     {
-      for (const char *name : {"solution.pvd",
-                               "solution.xdmf",
-                               "step_histogram.csv",
-                               "log.txt",
-                               "history.csv"})
+      for (const char *name :
+           {"solution.pvd", "solution.xdmf", "step_histogram.csv", "log.txt"})
         std::filesystem::remove(directory / name);
       const std::filesystem::path fields = directory / "fields";
       if (std::filesystem::is_directory(fields))
