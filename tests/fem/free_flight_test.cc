@@ -109,6 +109,23 @@ namespace
             EXPECT_TRUE(enclosure.value.contains(flight->value(s)));
             EXPECT_TRUE(enclosure.derivative.contains(lv.derivative))
               << "[" << a << ", " << b << "] s = " << s;
+            // f'' by central differences of f' (error about 1e-8 of the
+            // curvature's scale), inside the curvature enclosure.
+            const double delta = 1e-5 * horizon;
+            if (k % 4 != 0 && s - delta > a && s + delta < b)
+              {
+                const double curvature =
+                  (flight->value_and_derivative(s + delta).derivative -
+                   flight->value_and_derivative(s - delta).derivative) /
+                  (2. * delta);
+                const double slack =
+                  1e-6 * (std::abs(enclosure.curvature.lower) +
+                          std::abs(enclosure.curvature.upper));
+                EXPECT_GE(curvature, enclosure.curvature.lower - slack)
+                  << "[" << a << ", " << b << "] s = " << s;
+                EXPECT_LE(curvature, enclosure.curvature.upper + slack)
+                  << "[" << a << ", " << b << "] s = " << s;
+              }
           }
         // Narrow intervals give narrow enclosures.
         if (k % 4 == 0)

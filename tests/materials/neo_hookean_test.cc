@@ -158,6 +158,28 @@ namespace
       std::isinf(material.sum_volumetric_energy(J.data(), w.data(), n)));
   }
 
+  // On wide boxes of J (one cell, J' = 1, J'' = 0) the curvature enclosure
+  // holds f''(J) at both ends of the box: its bounds are taken at the right
+  // ends of the range of log J.
+  TEST(NeoHookean, CurvatureEnclosureHoldsTheEndsOfWideBoxes)
+  {
+    for (const auto &[lo, hi] : {std::pair{0.5, 2.},
+                                 std::pair{0.2, 0.9},
+                                 std::pair{1.1, 5.},
+                                 std::pair{0.95, 1.05}})
+      {
+        const double   one = 1., zero = 0., w = 1.;
+        double         slope = 0.;
+        const Interval c     = material.enclose_volumetric_curvature_sum(
+          &lo, &hi, &one, &one, &zero, &zero, &w, 1, slope);
+        for (const double J : {lo, hi})
+          EXPECT_TRUE(c.contains(material.volumetric_second_derivative(J)))
+            << "J in [" << lo << ", " << hi << "]: f''(" << J
+            << ") = " << material.volumetric_second_derivative(J) << " not in ["
+            << c.lower << ", " << c.upper << "]";
+      }
+  }
+
   // The curvature enclosure over boxes of J, J', J'' holds sampled sums of
   // w (f''(J) J'^2 + f'(J) J''), near J = 1 (bounds of log J without
   // logarithms) and far from it, with a partial last batch of four cells; it

@@ -140,8 +140,8 @@ namespace
           std::cout << "step " << r.steps << " t = " << integrator.time()
                     << std::endl;
         // A search that crawls shows as a run that never ends: these runs
-        // take a few thousand steps.
-        if (r.steps >= 20000)
+        // take a few thousand steps. A run that lost its energy is over too.
+        if (r.steps >= 20000 || r.energy_error > 1e-6)
           break;
       }
     r.reached_end = integrator.time() >= t_stop;
