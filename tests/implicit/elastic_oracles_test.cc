@@ -57,10 +57,14 @@ namespace
       }
   }
 
+  /** 1/2 v^T M v + V(q), with the kinetic energy summed here. */
   double
   total_energy(const Vector &q, const Vector &v)
   {
-    return estep::kinetic_energy(tiny_cube(), v) + tiny_cube().energy(q);
+    double kinetic = 0.;
+    for (unsigned int i = 0; i < v.size(); ++i)
+      kinetic += 0.5 * v[i] * v[i] / tiny_cube().inverse_mass()[i];
+    return kinetic + tiny_cube().energy(q);
   }
 
   /** The final state of @p integrator started from initial_state(). */

@@ -40,16 +40,20 @@ namespace
   };
 
   /**
-   * Run @p integrator from the oscillator's initial state to @p t_end; a run
+   * Run @p integrator from the oscillator's initial state, multiplied by
+   * @p scale, to @p t_end; errors are reported relative to @p scale. A run
    * that needs more than @p max_steps steps (a collapsing step size) fails.
    */
   OscillatorRun
   run(estep::TimeIntegrator &integrator,
       const double           t_end,
-      const double           max_steps = 3e5)
+      const double           max_steps = 3e5,
+      const double           scale     = 1.)
   {
     estep::Vector q0, v0, q_exact, v_exact;
     HarmonicOscillator::initial_state(q0, v0);
+    q0 *= scale;
+    v0 *= scale;
     const double E0 = oscillator().total_energy(q0, v0);
     integrator.initialize(0., q0, v0);
     OscillatorRun result{0., 0., 0., 0., {}};
@@ -74,6 +78,7 @@ namespace
           }
       }
     EXPECT_EQ(integrator.time(), t_end);
+    result.error /= scale;
     result.steps    = integrator.n_steps();
     result.counters = integrator.counters();
     return result;
@@ -299,6 +304,45 @@ namespace
           },
           expected);
         EXPECT_EQ(highest_order, static_cast<int>(p));
+      }
+  }
+
+  /**
+   * The tolerances mean what they say: a motion a thousand times larger,
+   * with the absolute tolerance a thousand times larger and the same
+   * relative tolerance, takes the same steps and has the same relative error
+   * (the problem is linear: the runs differ by the scale only). A method that
+   * mixed up the two tolerances would take far fewer steps for the large
+   * motion.
+   */
+  TEST(ImplicitOrder, TolerancesScaleWithTheMotion)
+  {
+    for (const std::string method : {"ida", "dirk"})
+      {
+        OscillatorRun runs[2];
+        for (unsigned int k = 0; k < 2; ++k)
+          {
+            const double              scale = (k == 0 ? 1. : 1e3);
+            estep::ImplicitParameters parameters;
+            parameters.relative_tolerance = 1e-6;
+            parameters.absolute_tolerance = 1e-7 * scale;
+            std::unique_ptr<estep::TimeIntegrator> integrator;
+            if (method == "ida")
+              integrator =
+                std::make_unique<estep::IdaBdf>(oscillator(), parameters, 1e-3);
+            else
+              integrator = std::make_unique<estep::ArkodeRungeKutta>(
+                oscillator(),
+                parameters,
+                estep::ArkodeRungeKutta::Method::dirk,
+                1e-3);
+            runs[k] = run(*integrator, 10., 3e5, scale);
+            print(method + ", scale " + std::to_string(scale), runs[k]);
+          }
+        EXPECT_NEAR(runs[1].steps, runs[0].steps, 0.05 * runs[0].steps)
+          << method;
+        EXPECT_NEAR(runs[1].error, runs[0].error, 0.2 * runs[0].error)
+          << method;
       }
   }
 } // namespace

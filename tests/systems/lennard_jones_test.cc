@@ -228,4 +228,43 @@ namespace
           }
       }
   }
+
+  /**
+   * Enclosures over intervals across the well and the inflection of the pair
+   * potential: two particles approach head-on from 1.6 sigma to 0.95 sigma
+   * (through u** = 3.5^(1/3) sigma^2, where phi' is largest, and u* =
+   * 2^(1/3) sigma^2, where phi is smallest) while a third drifts by. Every
+   * interval of several widths along the flight must hold the values and
+   * slopes sampled inside it: enclosures that only look at the ends of an
+   * interval miss the extremes in between.
+   */
+  TEST(LennardJones, EnclosuresHoldAcrossTheWellAndTheInflection)
+  {
+    const double              epsilon = 1.3, sigma = 0.9;
+    const LennardJonesCluster cluster(3, 3, 1., epsilon, sigma);
+    Vector                    q(9), v(9);
+    q[3] = 1.6 * sigma; // particle 1 on the x axis
+    q[6] = -1.5 * sigma, q[7] = 2. * sigma, q[8] = 0.3 * sigma;
+    v[0] = 0.4, v[3] = -0.25; // closing speed 0.65, about 1 sigma per time
+    v[6] = 0.1, v[7] = -0.2, v[8] = 0.05;
+    const auto   flight    = cluster.free_flight(q, v);
+    const double s_end     = 0.65 * sigma / 0.65; // r from 1.6 to 0.95 sigma
+    unsigned int n_checked = 0;
+    for (const double width : {0.05, 0.1, 0.2, 0.4})
+      for (double a = 0.; a + width <= s_end; a += 0.5 * width)
+        {
+          const estep::LineEnclosure e = flight->enclose(a, a + width);
+          for (unsigned int k = 0; k <= 200; ++k)
+            {
+              const double           s = a + width * k / 200.;
+              const estep::LineValue f = flight->value_and_derivative(s);
+              EXPECT_TRUE(e.value.contains(f.value))
+                << "[" << a << ", " << a + width << "], s = " << s;
+              EXPECT_TRUE(e.derivative.contains(f.derivative))
+                << "[" << a << ", " << a + width << "], s = " << s;
+              ++n_checked;
+            }
+        }
+    EXPECT_GT(n_checked, 1000u);
+  }
 } // namespace

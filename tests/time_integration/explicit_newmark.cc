@@ -107,6 +107,23 @@ namespace
       }
   }
 
+  /** Kinetic energy and momenta weigh each coordinate with its own mass. */
+  TEST(HarmonicOscillator, KineticEnergyAndMomentaUseTheMasses)
+  {
+    const estep::testing::HarmonicOscillator oscillator;
+    Vector                                   q(2), v(2);
+    q[0] = 0.7, q[1] = -0.4;
+    v[0] = 0.3, v[1] = 1.1;
+    const double p[2] = {oscillator.mass[0] * v[0], oscillator.mass[1] * v[1]};
+    EXPECT_NEAR(kinetic_energy(oscillator, v),
+                0.5 * (p[0] * v[0] + p[1] * v[1]),
+                1e-15);
+    const Momenta m = compute_momenta(oscillator, q, v);
+    EXPECT_NEAR(m.linear[0], p[0], 1e-15);
+    EXPECT_NEAR(m.linear[1], p[1], 1e-15);
+    EXPECT_NEAR(m.angular[2], q[0] * p[1] - q[1] * p[0], 1e-15);
+  }
+
   /** The least-squares slope of log(y) against log(x). */
   double
   fitted_rate(const std::vector<double> &x, const std::vector<double> &y)
