@@ -150,7 +150,6 @@ namespace estep
                          "parameter s = " +
                          to_short_string(s) + ", " + to_short_string(width) +
                          " wide")
-    , s(s)
   {}
 
 

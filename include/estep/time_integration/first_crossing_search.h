@@ -74,10 +74,8 @@ namespace estep
   class SearchStalled : public std::runtime_error
   {
   public:
+    /** The search stalled on an interval [s, s + width]. */
     SearchStalled(const double s, const double width);
-
-    /** The flight parameter where the search stalled. */
-    double s;
   };
 
   /**
