@@ -54,8 +54,9 @@ def read_catalogue(path):
 
 def run(command, cwd, log=None, timeout=None):
     """The exit code of command, or None if it ran out of time (then it and
-    its children are killed)."""
-    process = subprocess.Popen(command, cwd=cwd, stdout=subprocess.PIPE,
+    its children are killed). GoogleTest programs stop at their first failure."""
+    environment = dict(os.environ, GTEST_FAIL_FAST="1")
+    process = subprocess.Popen(command, cwd=cwd, stdout=subprocess.PIPE, env=environment,
                                stderr=subprocess.STDOUT, text=True, start_new_session=True)
     try:
         output, _ = process.communicate(timeout=timeout)
