@@ -114,6 +114,16 @@ namespace
                           << " steps, stopped at t = " << integrator.time();
             break;
           }
+        if (integrator.n_steps() % 100 == 0 &&
+            estep_test::counter(integrator.counters(),
+                                "newton convergence failures") > 50)
+          {
+            ADD_FAILURE() << integrator.name()
+                          << ": more than 50 Newton convergence failures, "
+                             "stopped at t = "
+                          << integrator.time();
+            break;
+          }
       }
     EXPECT_EQ(integrator.time(), t_end);
     result.q        = integrator.position();
