@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../fitted_slope.h"
 #include "implicit_test_support.h"
 
 #include <cmath>
@@ -157,23 +158,6 @@ namespace
     return std::max(dq.linfty_norm(), dv.linfty_norm());
   }
 
-  /** The least-squares slope of log(y) against log(x). */
-  double
-  fitted_slope(const std::vector<double> &x, const std::vector<double> &y)
-  {
-    double sx = 0., sy = 0., sxx = 0., sxy = 0.;
-    for (unsigned int k = 0; k < x.size(); ++k)
-      {
-        const double lx = std::log(x[k]), ly = std::log(y[k]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-      }
-    const double n = x.size();
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  }
-
   void
   print(const std::string &label, const FinalState &s)
   {
@@ -226,7 +210,7 @@ namespace
         EXPECT_LE(estep_test::counter(s.counters, "newton iterations"),
                   6. * s.steps);
       }
-    const double order = fitted_slope(steps, errors);
+    const double order = estep_test::fitted_slope(steps, errors);
     std::cout << "energy momentum: observed order " << order << '\n';
     EXPECT_GT(order, 1.8);
     EXPECT_LT(order, 2.2);
@@ -267,7 +251,7 @@ namespace
         EXPECT_LE(estep_test::counter(s.counters, "jacobian setups"),
                   s.steps / parameters.jacobian_update_interval + 1 + failures);
       }
-    const double order = fitted_slope(steps, errors);
+    const double order = estep_test::fitted_slope(steps, errors);
     std::cout << "midpoint: observed order " << order << '\n';
     EXPECT_GT(order, 1.8);
     EXPECT_LT(order, 2.2);

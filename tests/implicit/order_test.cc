@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../fitted_slope.h"
 #include "../time_integration/harmonic_oscillator.h"
 #include "implicit_test_support.h"
 
@@ -94,23 +95,6 @@ namespace
     result.steps    = integrator.n_steps();
     result.counters = integrator.counters();
     return result;
-  }
-
-  /** The least-squares slope of log(y) against log(x). */
-  double
-  fitted_slope(const std::vector<double> &x, const std::vector<double> &y)
-  {
-    double sx = 0., sy = 0., sxx = 0., sxy = 0.;
-    for (unsigned int k = 0; k < x.size(); ++k)
-      {
-        const double lx = std::log(x[k]), ly = std::log(y[k]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-      }
-    const double n = x.size();
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
   }
 
   /** Newton iterations per step of a run. */
@@ -212,7 +196,7 @@ namespace
         if (testing::Test::HasFailure())
           return; // fail fast: the tighter tolerances would only take longer
       }
-    const double order = -fitted_slope(steps, errors);
+    const double order = -estep_test::fitted_slope(steps, errors);
     std::cout << label << ": observed order " << order << '\n';
     EXPECT_GE(order, expected.order_min) << label;
     EXPECT_LE(order, expected.order_max) << label;
@@ -253,7 +237,7 @@ namespace
                                       "newton convergence failures"),
                   0u);
       }
-    const double order = fitted_slope(steps, errors);
+    const double order = estep_test::fitted_slope(steps, errors);
     std::cout << "midpoint: observed order " << order << '\n';
     EXPECT_GT(order, 1.8);
     EXPECT_LT(order, 2.2);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../fitted_slope.h"
 #include "argon.h"
 #include "harmonic_oscillator.h"
 
@@ -124,23 +125,6 @@ namespace
     EXPECT_NEAR(m.angular[2], q[0] * p[1] - q[1] * p[0], 1e-15);
   }
 
-  /** The least-squares slope of log(y) against log(x). */
-  double
-  fitted_rate(const std::vector<double> &x, const std::vector<double> &y)
-  {
-    double sx = 0., sy = 0., sxx = 0., sxy = 0.;
-    for (unsigned int k = 0; k < x.size(); ++k)
-      {
-        const double lx = std::log(x[k]), ly = std::log(y[k]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-      }
-    const double n = x.size();
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  }
-
   /**
    * Velocity Verlet on the coupled oscillators to t = 10 against the exact
    * motion: the largest error of position and velocity, at the ends of the
@@ -201,9 +185,9 @@ namespace
         errors.push_back(error);
         energy_errors.push_back(energy_error);
       }
-    const double rate = fitted_rate(steps, errors);
+    const double rate = estep_test::fitted_slope(steps, errors);
     std::cout << "fitted rate " << rate << ", energy error rate "
-              << fitted_rate(steps, energy_errors) << '\n';
+              << estep_test::fitted_slope(steps, energy_errors) << '\n';
     EXPECT_GT(rate, 1.8);
     EXPECT_LT(rate, 2.2);
     // Second order with a constant of the size of the phase error omega^3
