@@ -1,12 +1,16 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <estep/base/lanes.h>
 #include <estep/materials/batch_log.h>
+#include <estep/materials/material_registry.h>
 #include <estep/materials/neo_hookean.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <stdexcept>
 
 namespace estep
 {
@@ -538,4 +542,45 @@ namespace estep
     const double margin = 8. * unit * magnitude;
     return {lower - margin, upper + margin};
   }
+
+
+
+  namespace
+  {
+    void
+    declare_neo_hookean_parameters(dealii::ParameterHandler &prm)
+    {
+      const double max = dealii::Patterns::Double::max_double_value;
+      prm.enter_subsection("Neo-Hookean");
+      prm.declare_entry("Lambda",
+                        "0.0100",
+                        dealii::Patterns::Double(0., max),
+                        "Lame constant lambda0 (stress units).");
+      prm.declare_entry("Mu",
+                        "0.0066",
+                        dealii::Patterns::Double(0., max),
+                        "Shear modulus mu0 (stress units); must be positive.");
+      prm.leave_subsection();
+    }
+
+    std::shared_ptr<const Material>
+    create_neo_hookean(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Neo-Hookean");
+      const double lambda = prm.get_double("Lambda");
+      const double mu     = prm.get_double("Mu");
+      prm.leave_subsection();
+      if (!(mu > 0.))
+        throw std::runtime_error("Neo-Hookean/Mu: must be positive.");
+      return std::make_shared<NeoHookean>(lambda, mu);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_MATERIAL(
+  "neo-Hookean",
+  "W(F) = lambda0/2 (log J)^2 - mu0 log J + mu0/2 (tr(F^T F) - 3), the "
+  "compressible neo-Hookean solid (parameters in the subsection "
+  "Neo-Hookean).",
+  estep::declare_neo_hookean_parameters,
+  estep::create_neo_hookean)

@@ -1,0 +1,59 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <estep/materials/material_registry.h>
+
+#include <stdexcept>
+
+namespace estep
+{
+  PluginRegistry<MaterialFactory> &
+  material_registry()
+  {
+    static PluginRegistry<MaterialFactory> registry("material");
+    return registry;
+  }
+
+
+
+  void
+  declare_material_parameters(dealii::ParameterHandler &prm)
+  {
+    const double max = dealii::Patterns::Double::max_double_value;
+    prm.declare_entry("Model",
+                      "neo-Hookean",
+                      dealii::Patterns::Selection(material_registry().names()),
+                      "The strain energy of the body, one of the registered "
+                      "materials; each reads the subsection of its own name. " +
+                        material_registry().descriptions());
+    prm.declare_entry(
+      "Density",
+      "0.100",
+      dealii::Patterns::Double(0., max),
+      "Mass density per unit reference volume; must be positive.");
+    material_registry().declare_parameters(prm);
+  }
+
+
+
+  MaterialChoice
+  parse_material_parameters(dealii::ParameterHandler &prm,
+                            const std::string        &section)
+  {
+    MaterialChoice choice;
+    choice.density = prm.get_double("Density");
+    if (!(choice.density > 0.))
+      throw std::runtime_error(section + "/Density: must be positive.");
+    const auto &plugin =
+      material_registry().get(prm.get("Model"), section + "/Model");
+    try
+      {
+        choice.material = plugin.create(prm);
+      }
+    catch (const std::runtime_error &error)
+      {
+        // The plugin names its entry relative to its own subsection.
+        throw std::runtime_error(section + "/" + error.what());
+      }
+    return choice;
+  }
+} // namespace estep
