@@ -25,7 +25,7 @@ ONE_NS = 463.05        # 1 ns in tau
 
 def run_estep(estep, parameter_file, directory, settings):
     command = [estep, parameter_file, "--set", "Output directory=" + directory,
-               "--set", "Output/H1 norm=true", "--set", "Output/Progress=off"]
+               "--set", "Postprocessors/List=history, step histogram, h1 norm"]
     for key, value in settings.items():
         command += ["--set", f"{key}={value}"]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
@@ -71,7 +71,7 @@ def main():
     # The floor of the study: the reference's own H1 error, estimated against Verlet at 5 fs.
     finer = run_estep(args.estep, os.path.join(parameters, "argon_cluster_verlet.prm"),
                       os.path.join(args.output, "verlet_5fs"),
-                      dict(end, **{"Time integration/Time step": 0.5 * 4.6305e-3}))
+                      dict(end, **{"Time integration/Explicit Newmark/Time step": 0.5 * 4.6305e-3}))
     reference_error = abs(finer["h1 norm"] - norm_ref) / finer["h1 norm"]
     print(f"reference: velocity Verlet, dt = 10 fs: H1 norm {norm_ref:.10g}; "
           f"its own relative H1 error against dt = 5 fs: {reference_error:.3e}", flush=True)
@@ -81,7 +81,7 @@ def main():
         h_rel = float(text)
         directory = os.path.join(args.output, f"energy_stepping_{text}")
         settings = dict(end)
-        settings["Time integration/Energy step"] = repr(h_rel * E0)
+        settings["Time integration/Energy stepping/Energy step"] = repr(h_rel * E0)
         summary = run_estep(args.estep, os.path.join(parameters, "argon_cluster.prm"),
                             directory, settings)
         rows.append({

@@ -125,9 +125,9 @@ def run_estep(estep, parameter_file, directory, end_time):
     command = [estep, os.path.join(SOURCE_DIR, "parameter_files", parameter_file),
                "-s", f"Time integration/End time={end_time:.17g}",
                "-s", f"Output directory={directory}",
-               "-s", "Output/Field output interval=0",
+               "-s", "Postprocessors/List=history, step histogram, progress",
                "-s", f"Output/History interval={HISTORY_INTERVAL}",
-               "-s", "Output/Progress=off"]
+               "-s", "Postprocessors/List=history, step histogram"]
     with open(os.path.join(directory, "log.txt"), "w") as log:
         return subprocess.run(command, stdout=log, stderr=subprocess.STDOUT).returncode
 

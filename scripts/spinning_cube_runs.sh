@@ -14,5 +14,5 @@ for run in spinning_cube spinning_cube_h3e-5 spinning_cube_h6e-5 spinning_cube_n
            spinning_cube_newmark_0.0204 spinning_cube_newmark_0.0381 \
            spinning_cube_newmark_converged; do
   # Newmark at dt = 0.0381 ends unstable on purpose (exit code 2).
-  "$estep" "parameter_files/$run.prm" -s "Output/Progress=off" || [[ $? == 2 ]]
+  "$estep" "parameter_files/$run.prm" -s "Postprocessors/List=history, step histogram" || [[ $? == 2 ]]
 done

@@ -1,11 +1,17 @@
-// A mass on a linear spring, V(x) = k/2 |x|^2 in the plane, as a user-defined
-// estep::MechanicalSystem, integrated by energy-stepping. Exits with 0 when the
-// terraced energy is conserved and the orbit stays on the energy shell.
+// A user's own problem as an estep plugin: a unit mass on a linear spring,
+// V(x) = k/2 |x|^2 in the plane, written as an estep::MechanicalSystem and
+// registered as the problem "spring". Built as a shared library (see
+// CMakeLists.txt) and named in the input file's `Additional shared
+// libraries`, it runs through the estep command with every integrator,
+// postprocessor and output of the built-in problems: estep spring.prm.
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/problems/problem.h>
 #include <estep/systems/mechanical_system.h>
-#include <estep/time_integration/energy_stepping.h>
 
 #include <cmath>
-#include <iostream>
+#include <stdexcept>
 
 namespace
 {
@@ -97,28 +103,72 @@ namespace
       return std::make_unique<SpringFlight>(k, q, v);
     }
 
+    /** The distance from the origin, a column of history.csv. */
+    std::vector<std::string>
+    observable_names() const override
+    {
+      return {"radius"};
+    }
+
+    std::vector<double>
+    observables(const estep::Vector &q, const estep::Vector &) const override
+    {
+      return {q.l2_norm()};
+    }
+
   private:
     const double  k;
     estep::Vector inverse_masses;
   };
+
+  /** The parameters of the problem, in its own subsection. */
+  void
+  declare_spring_parameters(dealii::ParameterHandler &prm)
+  {
+    const double max = dealii::Patterns::Double::max_double_value;
+    const dealii::Patterns::List point(dealii::Patterns::Double(-max, max),
+                                       2,
+                                       2,
+                                       ",");
+    prm.enter_subsection("Spring");
+    prm.declare_entry("Stiffness",
+                      "1",
+                      dealii::Patterns::Double(0., max),
+                      "The spring constant k; must be positive.");
+    prm.declare_entry("Initial position", "1, 0", point, "x(0).");
+    prm.declare_entry("Initial velocity", "0, 1", point, "x'(0).");
+    prm.leave_subsection();
+  }
+
+  estep::Vector
+  parse_point(const std::string &text)
+  {
+    const auto    parts = dealii::Utilities::split_string_list(text, ',');
+    estep::Vector x(2);
+    for (unsigned int i = 0; i < 2; ++i)
+      x[i] = dealii::Utilities::string_to_double(parts[i]);
+    return x;
+  }
+
+  estep::Problem
+  create_spring_problem(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Spring");
+    const double k = prm.get_double("Stiffness");
+    if (!(k > 0.))
+      throw std::runtime_error("Spring/Stiffness: must be positive.");
+    estep::Problem problem;
+    problem.q0 = parse_point(prm.get("Initial position"));
+    problem.v0 = parse_point(prm.get("Initial velocity"));
+    prm.leave_subsection();
+    problem.system = std::make_unique<Spring>(k);
+    problem.description.add("stiffness", k);
+    return problem;
+  }
 } // namespace
 
-int
-main()
-{
-  const Spring  spring(1.);
-  estep::Vector q(2), v(2);
-  q[0] = 1.;
-  v[1] = 1.;
-  estep::EnergyStepping stepping(spring, 1e-3);
-  stepping.initialize(0., q, v);
-  const double E0 = stepping.terraced_energy();
-  while (stepping.time() < 10.)
-    stepping.step(10.);
-  const double drift  = std::abs(stepping.terraced_energy() - E0) / E0;
-  const double radius = stepping.position().l2_norm();
-  std::cout << "spring: " << stepping.n_steps()
-            << " steps, terraced energy drift " << drift << ", radius "
-            << radius << '\n';
-  return (drift < 1e-12 && std::abs(radius - 1.) < 1e-2) ? 0 : 1;
-}
+ESTEP_REGISTER_PROBLEM("spring",
+                       "a unit mass on a linear spring in the plane "
+                       "(subsection Spring): the example plugin.",
+                       declare_spring_parameters,
+                       create_spring_problem)

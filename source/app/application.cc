@@ -1,37 +1,28 @@
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/revision.h>
 #include <deal.II/base/utilities.h>
 
 #include <estep/app/application.h>
 #include <estep/app/input_file.h>
-#include <estep/app/problem.h>
+#include <estep/app/renamed_entries.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
+#include <estep/base/mpi_session.h>
 #include <estep/contact/ccd_command.h>
-#include <estep/fem/elastic_body.h>
-#include <estep/implicit/create_implicit_integrator.h>
-#include <estep/io/contact_monitor.h>
-#include <estep/io/field_output.h>
-#include <estep/io/history_writer.h>
-#include <estep/io/json_writer.h>
-#include <estep/io/progress_line.h>
-#include <estep/io/progress_log.h>
-#include <estep/io/step_histogram.h>
-#include <estep/io/trajectory_norm.h>
-#include <estep/systems/contact_system.h>
-#include <estep/time_integration/energy_stepping.h>
-#include <estep/time_integration/explicit_newmark.h>
+#include <estep/io/postprocessor.h>
+#include <estep/io/run_summary.h>
+#include <estep/materials/material_registry.h>
+#include <estep/problems/problem.h>
+#include <estep/time_integration/integrator_registry.h>
 #include <estep/time_integration/time_loop.h>
 
-#include <sys/resource.h>
+#include <dlfcn.h>
 
 #include <cmath>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -66,6 +57,22 @@ namespace estep
       "stalled (its event search could not advance at round-off), 4 an output could\n"
       "not be written (e.g. a full disk), 128 + the signal's number when SIGINT or\n"
       "SIGTERM ended the run (130, 143; summary.json says interrupted).\n";
+
+    /** The usage and the registered plugins, by extension point. */
+    void
+    print_help(std::ostream &out)
+    {
+      out << usage << "\nPlugins (choose them by name in the input file):\n"
+          << "  Problem/System:              " << problem_registry().names(", ")
+          << "\n  Material/Model:              "
+          << material_registry().names(", ")
+          << "\n  Time integration/Method:     "
+          << integrator_registry().names(", ")
+          << "\n  Postprocessors/List:         "
+          << postprocessor_registry().names(", ")
+          << "\nestep --print-parameters documents each of them; "
+             "'Additional shared libraries' adds your own.\n";
+    }
 
     /** What the command line asks for. */
     struct CommandLine
@@ -137,6 +144,8 @@ namespace estep
         throw std::runtime_error("--set \"" + text + "\": no entry name.");
       const std::string entry = sections.back();
       sections.pop_back();
+      if (const std::string moved = renamed_entry_message(path); !moved.empty())
+        throw std::runtime_error("--set \"" + text + "\": " + moved);
       if (!sections.empty() && !prm.subsection_path_exists(sections))
         throw std::runtime_error("--set \"" + text +
                                  "\": there is no subsection <" +
@@ -158,44 +167,124 @@ namespace estep
         prm.leave_subsection();
     }
 
-    /** Declare every parameter, then read the input file and the overrides, if
-     * any. */
+    /** Whether @p text is an override of the entry @p path. */
+    bool
+    overrides_entry(const std::string &text, const std::string &path)
+    {
+      return dealii::Utilities::trim(text.substr(0, text.find('='))) == path;
+    }
+
+    void
+    check_input_file(const std::string &name)
+    {
+      if (!std::filesystem::is_regular_file(name))
+        throw std::runtime_error("The input file <" + name +
+                                 "> does not exist or is not a file.");
+      if (!has_extension(name, ".prm") && !has_extension(name, ".json") &&
+          !has_extension(name, ".xml"))
+        throw std::runtime_error("The input file <" + name +
+                                 "> must end in .prm, .json or .xml.");
+    }
+
+    /**
+     * Load the libraries named in `Additional shared libraries` (input file
+     * and overrides): their static registrations add their plugins before
+     * the parameters are declared.
+     */
+    void
+    load_plugin_libraries(const CommandLine &command)
+    {
+      const std::string        entry = "Additional shared libraries";
+      dealii::ParameterHandler first_reading;
+      first_reading.declare_entry(
+        entry, "", dealii::Patterns::List(dealii::Patterns::FileName()));
+      if (!command.input_file.empty())
+        read_input_file(first_reading, command.input_file, true);
+      for (const std::string &text : command.overrides)
+        if (overrides_entry(text, entry))
+          apply_override(first_reading, text);
+      for (const std::string &library :
+           dealii::Utilities::split_string_list(first_reading.get(entry), ','))
+        {
+          const std::size_t errors_before = plugin_registration_errors().size();
+          if (dlopen(library.c_str(), RTLD_NOW | RTLD_GLOBAL) == nullptr)
+            throw std::runtime_error(entry + ": cannot load <" + library +
+                                     ">: " + dlerror());
+          if (plugin_registration_errors().size() > errors_before)
+            throw std::runtime_error(
+              entry + ": <" + library +
+              ">: " + plugin_registration_errors()[errors_before]);
+        }
+    }
+
+    /** Load the plugin libraries, declare every parameter, then read the
+     * input file and the overrides, if any. */
     void
     read_parameters(const CommandLine &command, dealii::ParameterHandler &prm)
     {
+      if (!command.input_file.empty())
+        check_input_file(command.input_file);
+      load_plugin_libraries(command);
       RunParameters::declare_parameters(prm);
       declare_problem_parameters(prm);
       if (!command.input_file.empty())
-        {
-          if (!std::filesystem::is_regular_file(command.input_file))
-            throw std::runtime_error("The input file <" + command.input_file +
-                                     "> does not exist or is not a file.");
-          if (!has_extension(command.input_file, ".prm") &&
-              !has_extension(command.input_file, ".json") &&
-              !has_extension(command.input_file, ".xml"))
-            throw std::runtime_error("The input file <" + command.input_file +
-                                     "> must end in .prm, .json or .xml.");
-          read_input_file(prm, command.input_file);
-        }
+        read_input_file(prm, command.input_file);
       for (const std::string &text : command.overrides)
         apply_override(prm, text);
     }
 
-    std::unique_ptr<TimeIntegrator>
-    create_integrator(const RunParameters      &parameters,
-                      dealii::ParameterHandler &prm,
-                      const MechanicalSystem   &system)
+    /** Input errors that only show in the initial state (e.g. a velocity
+     * function that evaluates to NaN). */
+    void
+    check_initial_state(const Problem &problem)
     {
-      if (parameters.method == "energy stepping")
-        return std::make_unique<EnergyStepping>(system,
-                                                parameters.energy_step,
-                                                parameters.terrace_offset);
-      if (parameters.method == "explicit newmark")
-        return std::make_unique<ExplicitNewmark>(system, parameters.time_step);
-      return create_implicit_integrator(parameters.method,
-                                        prm,
-                                        system,
-                                        parameters.time_step);
+      for (unsigned int i = 0; i < problem.q0.size(); ++i)
+        if (!std::isfinite(problem.q0[i]))
+          throw std::runtime_error(
+            "The initial configuration of the " + problem.system->name() +
+            " is not finite (coordinate " + std::to_string(i) +
+            "): check its mesh, placement and initial displacement.");
+      for (unsigned int i = 0; i < problem.v0.size(); ++i)
+        if (!std::isfinite(problem.v0[i]))
+          throw std::runtime_error(
+            "The initial velocity of the " + problem.system->name() +
+            " is not finite (component " + std::to_string(i) +
+            "): check its initial velocity entries or function.");
+    }
+
+    /** The integrator chosen in `Time integration`, initialised with the
+     * problem's initial state; its warnings go to standard error. */
+    std::unique_ptr<TimeIntegrator>
+    create_initialized_integrator(dealii::ParameterHandler &prm,
+                                  const Problem            &problem,
+                                  const RunParameters      &parameters)
+    {
+      prm.enter_subsection("Time integration");
+      auto integrator = create_integrator(prm, *problem.system);
+      prm.leave_subsection();
+      integrator->initialize(parameters.start_time, problem.q0, problem.v0);
+      for (const std::string &warning : integrator->warnings())
+        std::cerr << "estep: warning: " << warning << '\n';
+      return integrator;
+    }
+
+    /** The postprocessors of `Postprocessors/List`. */
+    std::vector<std::unique_ptr<Postprocessor>>
+    create_run_postprocessors(dealii::ParameterHandler &prm,
+                              const Problem            &problem,
+                              const TimeIntegrator     &integrator,
+                              const RunParameters      &parameters)
+    {
+      prm.enter_subsection("Postprocessors");
+      auto postprocessors = create_postprocessors(prm,
+                                                  {integrator,
+                                                   problem.q0,
+                                                   problem.v0,
+                                                   parameters.output_directory,
+                                                   parameters.start_time,
+                                                   parameters.end_time});
+      prm.leave_subsection();
+      return postprocessors;
     }
 
     /**
@@ -220,115 +309,21 @@ namespace estep
           }
     }
 
-    /** The largest resident memory of this process so far, in MiB. */
-    double
-    peak_memory_mib()
-    {
-      rusage usage;
-      getrusage(RUSAGE_SELF, &usage);
-      return usage.ru_maxrss / 1024.; // Linux reports KiB
-    }
-
-    /** Input errors that only show in the initial state (e.g. a velocity
-     * function that evaluates to NaN). */
+    /**
+     * Everything that input can make fail has been done: only now is the
+     * output directory touched, first with a summary saying "running" (so
+     * that no reader takes an earlier run's summary for this one), then the
+     * parameters as read.
+     */
     void
-    check_initial_state(const Problem &problem)
+    prepare_output_directory(const std::filesystem::path    &directory,
+                             const dealii::ParameterHandler &prm,
+                             const RunRecord                &run)
     {
-      for (unsigned int i = 0; i < problem.q0.size(); ++i)
-        if (!std::isfinite(problem.q0[i]))
-          throw std::runtime_error(
-            "The initial configuration of the " + problem.system->name() +
-            " is not finite (coordinate " + std::to_string(i) +
-            "): check its mesh, placement and initial displacement.");
-      for (unsigned int i = 0; i < problem.v0.size(); ++i)
-        if (!std::isfinite(problem.v0[i]))
-          throw std::runtime_error(
-            "The initial velocity of the " + problem.system->name() +
-            " is not finite (component " + std::to_string(i) +
-            "): check its initial velocity entries or function.");
-    }
-
-    JsonObject
-    momenta_json(const Momenta &m)
-    {
-      return JsonObject()
-        .add("linear", std::vector<double>(m.linear, m.linear + 3))
-        .add("angular", std::vector<double>(m.angular, m.angular + 3));
-    }
-
-    /** |b - a| relative to |a|, or absolute where a is (numerically) zero. */
-    double
-    drift(const double a, const double b, const double scale)
-    {
-      return std::abs(b - a) / (std::abs(a) > 1e-14 * scale ? std::abs(a) : 1.);
-    }
-
-    int
-    run(const CommandLine &command, int argc, char **argv)
-    {
-      dealii::ParameterHandler prm;
-      read_parameters(command, prm);
-
-      RunParameters parameters;
-      parameters.parse_parameters(prm);
-      Problem problem = create_problem(prm);
-      check_initial_state(problem);
-
-      const MechanicalSystem &system = *problem.system;
-      // MPI, where a part needs it: HDF5 output and Trilinos solvers.
-      prm.enter_subsection("Implicit integrators");
-      const bool trilinos = prm.get("Linear solver") == "cg amg" &&
-                            parameters.method != "energy stepping" &&
-                            parameters.method != "explicit newmark";
-      prm.leave_subsection();
-      const bool hdf5 = parameters.field_output_interval > 0. &&
-                        parameters.field_output_format == "hdf5";
-      std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-      if (trilinos || hdf5)
-        mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(argc,
-                                                                         argv,
-                                                                         1);
-
-      auto integrator = create_integrator(parameters, prm, system);
-      integrator->initialize(parameters.start_time, problem.q0, problem.v0);
-      const auto *body = dynamic_cast<const ElasticBody *>(&system);
-      if (parameters.field_output_interval > 0. && body == nullptr)
-        throw std::runtime_error("Output/Field output interval: the system <" +
-                                 system.name() + "> has no fields to write.");
-
-      const double T0 =
-        kinetic_energy(system, problem.q0.size() ? problem.v0 : Vector());
-      const double  V0       = system.energy(problem.q0);
-      const Momenta momenta0 = compute_momenta(system, problem.q0, problem.v0);
-      if (parameters.method == "energy stepping" &&
-          parameters.energy_step > std::abs(T0) + std::abs(V0))
-        std::cerr << "estep: warning: Time integration/Energy step: h = "
-                  << parameters.energy_step
-                  << " exceeds the initial energy scale |T| + |V| = "
-                  << std::abs(T0) + std::abs(V0)
-                  << " of the system: its terraces are coarser than the "
-                     "motion and the results say little.\n";
-
-      // Everything that input can make fail has been done: only now is the
-      // output directory touched, first with a summary saying "running", so
-      // that no reader takes an earlier run's summary for this one.
-      const std::filesystem::path directory(parameters.output_directory);
-      const std::string summary_file = (directory / "summary.json").string();
-      const auto        status_only  = [&](const std::string &status,
-                                   const std::string &message) {
-        return JsonObject()
-                 .add("estep version", ESTEP_VERSION)
-                 .add("status", status)
-                 .add("message", message)
-                 .add("system", system.name())
-                 .add("method", integrator->name())
-                 .add("start time", parameters.start_time)
-                 .add("end time", parameters.end_time)
-                 .to_string() +
-               "\n";
-      };
       std::filesystem::create_directories(directory);
-      write_file_atomically(summary_file, status_only("running", ""));
+      write_file_atomically((directory / "summary.json").string(),
+                            status_summary(run, "running", "").to_string() +
+                              "\n");
       remove_earlier_outputs(directory);
       for (const auto &[name, style] :
            {std::pair{"parameters.prm", dealii::ParameterHandler::ShortPRM},
@@ -338,183 +333,61 @@ namespace estep
           prm.print_parameters(text, style);
           write_file_atomically((directory / name).string(), text.str());
         }
+    }
 
-      std::unique_ptr<HistoryWriter> history;
-      try
-        {
-          history = std::make_unique<HistoryWriter>(
-            (directory / "history.csv").string(), *integrator);
-        }
-      catch (const std::runtime_error &error)
-        {
-          // The output directory does not take the history (a full disk):
-          // the run cannot start.
-          try
-            {
-              write_file_atomically(summary_file,
-                                    status_only("failed", error.what()));
-            }
-          catch (const std::exception &)
-            {}
-          std::cerr << "estep: " << error.what() << '\n';
-          return exit_failed;
-        }
-      TrajectoryNorm norm;
-      StepHistogram  histogram;
-      histogram.set_end_time(parameters.end_time);
-      std::vector<RunObserver *> observers = {history.get(), &histogram};
-      if (parameters.h1_norm)
-        observers.push_back(&norm);
-      std::unique_ptr<FieldOutput> fields;
-      if (parameters.field_output_interval > 0.)
-        {
-          fields =
-            std::make_unique<FieldOutput>(*body,
-                                          directory.string(),
-                                          hdf5 ? FieldOutput::Format::hdf5 :
-                                                 FieldOutput::Format::vtu,
-                                          parameters.start_time,
-                                          parameters.field_output_interval);
-          observers.push_back(fields.get());
-        }
-      std::unique_ptr<ContactMonitor> contact;
-      if (const auto *contact_system =
-            dynamic_cast<const ContactSystem *>(&system))
-        {
-          contact = std::make_unique<ContactMonitor>(*contact_system);
-          observers.push_back(contact.get());
-        }
-      std::unique_ptr<ProgressLine> progress;
-      std::unique_ptr<ProgressLog>  log;
-      if (parameters.progress != "off")
-        {
-          const bool terminal =
-            parameters.progress == "on" || ProgressLine::stderr_is_terminal();
-          if (terminal)
-            {
-              progress = std::make_unique<ProgressLine>(parameters.start_time,
-                                                        parameters.end_time);
-              observers.push_back(progress.get());
-            }
-          log = std::make_unique<ProgressLog>((directory / "log.txt").string(),
-                                              parameters.start_time,
-                                              parameters.end_time,
-                                              parameters.progress_interval,
-                                              !terminal);
-          observers.push_back(log.get());
-        }
-
+    /** Run the time loop; SIGINT and SIGTERM end it after the current step,
+     * with its summary (status interrupted). */
+    TimeLoopResult
+    run_time_loop_with_signals(
+      TimeIntegrator                                    &integrator,
+      const RunParameters                               &parameters,
+      const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
+    {
       TimeLoopSettings settings;
       settings.start_time      = parameters.start_time;
       settings.end_time        = parameters.end_time;
       settings.output_interval = parameters.history_interval;
       settings.blowup_factor   = parameters.blowup_factor;
-      // SIGINT and SIGTERM end the run after the current step, with its
-      // summary (status interrupted).
+      std::vector<RunObserver *> observers;
+      for (const auto &postprocessor : postprocessors)
+        observers.push_back(postprocessor.get());
       const auto interrupt = [](const int signal) {
         request_interruption(signal);
       };
       std::signal(SIGINT, interrupt);
       std::signal(SIGTERM, interrupt);
       const TimeLoopResult result =
-        run_time_loop(*integrator, settings, observers);
+        run_time_loop(integrator, settings, observers);
       std::signal(SIGINT, SIG_DFL);
       std::signal(SIGTERM, SIG_DFL);
-      progress.reset();
-      if (fields && result.status != RunStatus::failed)
-        fields->finish();
-      if (log && result.status != RunStatus::failed)
-        log->finish(*integrator, to_string(result.status));
+      return result;
+    }
 
-      // The summary.
-      const Vector &q        = integrator->position();
-      const Vector &v        = integrator->velocity();
-      const double  T1       = kinetic_energy(system, v);
-      const double  V1       = system.energy(q);
-      const Momenta momenta1 = compute_momenta(system, q, v);
-      const double  scale    = std::abs(T0) + std::abs(V0);
+    /** Let every postprocessor finish; one whose output cannot be written
+     * fails the run. */
+    void
+    finish_postprocessors(
+      const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
+      TimeLoopResult                                    &result)
+    {
+      for (const auto &postprocessor : postprocessors)
+        try
+          {
+            postprocessor->finish(result);
+          }
+        catch (const std::exception &error)
+          {
+            if (result.status != RunStatus::failed)
+              {
+                result.status  = RunStatus::failed;
+                result.message = error.what();
+              }
+          }
+    }
 
-      JsonObject summary;
-      summary.add("estep version", ESTEP_VERSION)
-        .add("status", to_string(result.status))
-        .add("message", result.message)
-        .add("system", system.name())
-        .add("problem", problem.description)
-        .add("degrees of freedom", system.n_dofs())
-        .add("method", integrator->name())
-        .add("start time", parameters.start_time)
-        .add("end time", parameters.end_time)
-        .add("final time", result.final_time)
-        .add("wall seconds", result.wall_seconds)
-        .add("peak memory [MiB]", peak_memory_mib());
-      JsonObject counters;
-      for (const Counter &counter : integrator->counters())
-        counters.add(counter.first, counter.second);
-      summary.add("counters", counters);
-      const double elapsed = result.final_time - parameters.start_time;
-      summary
-        .add("mean step",
-             integrator->n_steps() ? elapsed / integrator->n_steps() : 0.)
-        .add("min step", integrator->min_step())
-        .add("max step", integrator->max_step());
-      JsonObject energies;
-      energies.add("initial kinetic", T0)
-        .add("initial potential", V0)
-        .add("final kinetic", T1)
-        .add("final potential", V1)
-        .add("total energy drift", drift(T0 + V0, T1 + V1, scale));
-      if (const auto *stepping =
-            dynamic_cast<const EnergyStepping *>(integrator.get()))
-        {
-          const double Eh0 = stepping->initial_terraced_energy();
-          energies.add("energy step", stepping->energy_step())
-            .add("initial terraced energy", Eh0)
-            .add("final terraced energy", stepping->terraced_energy())
-            .add("terraced energy drift",
-                 drift(Eh0, stepping->terraced_energy(), scale));
-        }
-      summary.add("energies", energies);
-      double linear_drift = 0., angular_drift = 0.;
-      for (unsigned int c = 0; c < 3; ++c)
-        {
-          linear_drift =
-            std::max(linear_drift,
-                     std::abs(momenta1.linear[c] - momenta0.linear[c]));
-          angular_drift =
-            std::max(angular_drift,
-                     std::abs(momenta1.angular[c] - momenta0.angular[c]));
-        }
-      summary.add("initial momenta", momenta_json(momenta0))
-        .add("final momenta", momenta_json(momenta1))
-        .add("linear momentum drift", linear_drift)
-        .add("angular momentum drift", angular_drift);
-      if (parameters.h1_norm)
-        summary.add("h1 norm", norm.h1_norm());
-      if (contact)
-        summary.add("contact", contact->summary(problem.q0, problem.v0, q, v));
-      try
-        {
-          histogram.write((directory / "step_histogram.csv").string());
-          write_file_atomically(summary_file, summary.to_string() + "\n");
-        }
-      catch (const std::exception &error)
-        {
-          if (result.status != RunStatus::failed)
-            throw;
-          // The disk that failed the run may not take the summary either.
-          std::cerr << "estep: " << error.what() << '\n';
-        }
-
-      std::cout << "estep: " << integrator->name() << " on the "
-                << system.name() << ": " << to_string(result.status)
-                << " at t = " << result.final_time << " after "
-                << integrator->n_steps() << " steps in " << result.wall_seconds
-                << " s; output in " << directory.string() << "/\n";
-      if (contact)
-        std::cout << "estep: " << contact->report(problem.q0, problem.v0, q, v)
-                  << '\n';
-      std::cerr << (result.message.empty() ? "" : "estep: ") << result.message
-                << (result.message.empty() ? "" : "\n");
+    int
+    exit_code(const TimeLoopResult &result)
+    {
       switch (result.status)
         {
           case RunStatus::completed:
@@ -529,6 +402,83 @@ namespace estep
             return 128 + result.signal;
         }
       return exit_failed;
+    }
+
+    /** A run: read the parameters, create the problem, the integrator and the
+     * postprocessors, run the time loop, write the summary. */
+    int
+    run(const CommandLine &command)
+    {
+      dealii::ParameterHandler prm;
+      read_parameters(command, prm);
+      RunParameters parameters;
+      parameters.parse_parameters(prm);
+
+      const Problem problem = create_problem(prm);
+      check_initial_state(problem);
+      const auto integrator =
+        create_initialized_integrator(prm, problem, parameters);
+      const auto postprocessors =
+        create_run_postprocessors(prm, problem, *integrator, parameters);
+      const RunRecord record{problem,
+                             *integrator,
+                             postprocessors,
+                             parameters.start_time,
+                             parameters.end_time};
+
+      const std::filesystem::path directory(parameters.output_directory);
+      const std::string summary_file = (directory / "summary.json").string();
+      prepare_output_directory(directory, prm, record);
+      try
+        {
+          for (const auto &postprocessor : postprocessors)
+            postprocessor->start();
+        }
+      catch (const std::runtime_error &error)
+        {
+          // The output directory does not take the outputs (a full disk):
+          // the run cannot start.
+          try
+            {
+              write_file_atomically(
+                summary_file,
+                status_summary(record, "failed", error.what()).to_string() +
+                  "\n");
+            }
+          catch (const std::exception &)
+            {}
+          std::cerr << "estep: " << error.what() << '\n';
+          return exit_failed;
+        }
+
+      TimeLoopResult result =
+        run_time_loop_with_signals(*integrator, parameters, postprocessors);
+      finish_postprocessors(postprocessors, result);
+      try
+        {
+          write_file_atomically(summary_file,
+                                run_summary(record, result).to_string() + "\n");
+        }
+      catch (const std::exception &error)
+        {
+          if (result.status != RunStatus::failed)
+            throw;
+          // The disk that failed the run may not take the summary either.
+          std::cerr << "estep: " << error.what() << '\n';
+        }
+
+      std::cout << "estep: " << integrator->name() << " on the "
+                << problem.system->name() << ": " << to_string(result.status)
+                << " at t = " << result.final_time << " after "
+                << integrator->n_steps() << " steps in " << result.wall_seconds
+                << " s; output in " << directory.string() << "/\n";
+      for (const auto &postprocessor : postprocessors)
+        if (const std::string line = postprocessor->final_report();
+            !line.empty())
+          std::cout << "estep: " << line << '\n';
+      if (!result.message.empty())
+        std::cerr << "estep: " << result.message << '\n';
+      return exit_code(result);
     }
   } // namespace
 
@@ -560,7 +510,7 @@ namespace estep
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)
           {
-            std::cout << usage;
+            print_help(std::cout);
             return exit_success;
           }
         if (command.version)
@@ -583,7 +533,9 @@ namespace estep
           throw std::runtime_error(
             "No input file given. Usage: estep [options] INPUT.prm "
             "(see estep --help).");
-        return run(command, argc, argv);
+        const int code = run(command);
+        finish_mpi();
+        return code;
       }
     catch (const dealii::ExceptionBase &exception)
       {
@@ -593,6 +545,7 @@ namespace estep
       {
         std::cerr << "estep: error: " << exception.what() << '\n';
       }
+    finish_mpi();
     return exit_input_error;
   }
 } // namespace estep

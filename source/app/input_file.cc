@@ -2,11 +2,14 @@
 #include <deal.II/base/utilities.h>
 
 #include <estep/app/input_file.h>
+#include <estep/app/renamed_entries.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace estep
@@ -41,9 +44,31 @@ namespace estep
                           extension) == 0;
     }
 
-    /** Follow the include lines of a .prm file: no cycle, bounded depth. */
+    /** The first word of @p line (lower case) and the rest, trimmed. */
+    std::pair<std::string, std::string>
+    keyword_and_rest(const std::string &line)
+    {
+      const auto  space = line.find_first_of(" \t");
+      std::string word  = line.substr(0, space);
+      for (char &c : word)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return {word,
+              space == std::string::npos ?
+                std::string() :
+                dealii::Utilities::trim(line.substr(space))};
+    }
+
+    /**
+     * Follow a .prm file as deal.II will read it, for what deal.II cannot
+     * survive or report clearly: include lines (no cycle, bounded depth, the
+     * file exists) and entries of an earlier version of the input that have
+     * moved (renamed_entry_message()). @p sections is the subsection path
+     * at the start of the file.
+     */
     void
-    check_includes(const std::string &filename, std::vector<std::string> &chain)
+    scan_prm_file(const std::string        &filename,
+                  std::vector<std::string> &chain,
+                  std::vector<std::string> &sections)
     {
       std::error_code   error;
       const std::string canonical =
@@ -52,30 +77,49 @@ namespace estep
       std::string        line;
       for (unsigned int number = 1; std::getline(lines, line); ++number)
         {
-          line = dealii::Utilities::trim(line);
-          if (line.rfind("include ", 0) != 0 && line.rfind("INCLUDE ", 0) != 0)
-            continue;
-          const std::string target = dealii::Utilities::trim(line.substr(8));
-          const std::string where  = "Line <" + std::to_string(number) +
+          line = dealii::Utilities::trim(line.substr(0, line.find('#')));
+          const auto [keyword, rest] = keyword_and_rest(line);
+          const std::string where    = "Line <" + std::to_string(number) +
                                     "> of file <" + filename + ">: ";
-          const std::string target_canonical =
-            std::filesystem::weakly_canonical(target, error).string();
-          for (const std::string &open : chain)
-            if (open == target_canonical || target_canonical == canonical)
-              throw std::runtime_error(where + "including <" + target +
-                                       "> forms a cycle of includes.");
-          if (chain.size() >= max_include_depth)
-            throw std::runtime_error(where + "includes nest deeper than " +
-                                     std::to_string(max_include_depth) +
-                                     " files.");
-          if (!std::filesystem::is_regular_file(target))
-            throw std::runtime_error(where + "the included file <" + target +
-                                     "> does not exist or is not a file.");
-          chain.push_back(target_canonical);
-          check_includes(target, chain);
-          chain.pop_back();
+          if (keyword == "subsection")
+            sections.push_back(rest);
+          else if (keyword == "end" && !sections.empty())
+            sections.pop_back();
+          else if (keyword == "set")
+            {
+              std::string path;
+              for (const std::string &section : sections)
+                path += section + "/";
+              path += dealii::Utilities::trim(rest.substr(0, rest.find('=')));
+              const std::string moved = renamed_entry_message(path);
+              if (!moved.empty())
+                throw std::runtime_error(where + moved);
+            }
+          else if (keyword == "include")
+            {
+              const std::string &target = rest;
+              const std::string  target_canonical =
+                std::filesystem::weakly_canonical(target, error).string();
+              for (const std::string &open : chain)
+                if (open == target_canonical || target_canonical == canonical)
+                  throw std::runtime_error(where + "including <" + target +
+                                           "> forms a cycle of includes.");
+              if (chain.size() >= max_include_depth)
+                throw std::runtime_error(where + "includes nest deeper than " +
+                                         std::to_string(max_include_depth) +
+                                         " files.");
+              if (!std::filesystem::is_regular_file(target))
+                throw std::runtime_error(where + "the included file <" +
+                                         target +
+                                         "> does not exist or is not a file.");
+              chain.push_back(target_canonical);
+              scan_prm_file(target, chain, sections);
+              chain.pop_back();
+            }
         }
     }
+
+
 
     /** The deepest nesting of brackets outside strings. */
     unsigned int
@@ -108,7 +152,9 @@ namespace estep
 
 
   void
-  read_input_file(dealii::ParameterHandler &prm, const std::string &filename)
+  read_input_file(dealii::ParameterHandler &prm,
+                  const std::string        &filename,
+                  const bool                skip_undeclared)
   {
     if (ends_with(filename, ".json"))
       {
@@ -117,17 +163,17 @@ namespace estep
                                    "> nests deeper than " +
                                    std::to_string(max_json_depth) +
                                    " levels: it is not a parameter file.");
-        prm.parse_input(filename);
+        prm.parse_input(filename, "", skip_undeclared);
         return;
       }
     if (ends_with(filename, ".xml"))
       {
-        prm.parse_input(filename);
+        prm.parse_input(filename, "", skip_undeclared);
         return;
       }
-    std::vector<std::string> chain;
-    check_includes(filename, chain);
+    std::vector<std::string> chain, sections;
+    scan_prm_file(filename, chain, sections);
     std::istringstream text(read_text(filename));
-    prm.parse_input(text, filename);
+    prm.parse_input(text, filename, "", skip_undeclared);
   }
 } // namespace estep

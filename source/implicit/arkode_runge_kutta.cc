@@ -1,5 +1,9 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/implicit/arkode_runge_kutta.h>
+#include <estep/implicit/implicit_parameters.h>
 #include <estep/implicit/shifted_stiffness_solver.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include "sundials_support.h"
 #include <arkode/arkode_arkstep.h>
@@ -299,4 +303,33 @@ namespace estep
             {"newton convergence failures",
              static_cast<std::uint64_t>(convergence_failures)}};
   }
+
+
+  namespace
+  {
+    template <ArkodeRungeKutta::Method method>
+    std::unique_ptr<TimeIntegrator>
+    create_arkode(dealii::ParameterHandler &prm, const MechanicalSystem &system)
+    {
+      const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      return std::make_unique<ArkodeRungeKutta>(system,
+                                                parameters,
+                                                method,
+                                                parameters.time_step);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_INTEGRATOR(
+  "arkode midpoint",
+  "the implicit midpoint rule (symplectic, second order) through SUNDIALS "
+  "ARKode at the fixed time step (subsection Implicit integrators).",
+  estep::declare_implicit_parameters,
+  estep::create_arkode<estep::ArkodeRungeKutta::Method::midpoint>)
+
+ESTEP_REGISTER_INTEGRATOR(
+  "arkode irk",
+  "SUNDIALS ARKode's adaptive diagonally implicit Runge-Kutta method "
+  "(subsection Implicit integrators).",
+  estep::declare_implicit_parameters,
+  estep::create_arkode<estep::ArkodeRungeKutta::Method::dirk>)

@@ -1,10 +1,13 @@
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/p1_cell_data.h>
 #include <estep/implicit/energy_momentum.h>
+#include <estep/implicit/implicit_parameters.h>
 #include <estep/implicit/shifted_stiffness_solver.h>
 #include <estep/materials/material.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include "sundials_support.h"
 #include <kinsol/kinsol.h>
@@ -271,7 +274,7 @@ namespace estep
     if (!(remaining > 0.))
       return;
     Implementation &im = *implementation;
-    const double    h  = (remaining < im.dt * (1. + 1e-12)) ? remaining : im.dt;
+    const double    h  = (remaining < im.dt * (1. + 1e-6)) ? remaining : im.dt;
     begin_step();
     im.callback_error.clear();
     im.sundials_error.clear();
@@ -342,4 +345,32 @@ namespace estep
             {"linear iterations", im.linear_solver.n_linear_iterations()},
             {"jacobian setups", im.linear_solver.n_setups()}};
   }
+
+
+  namespace
+  {
+    std::unique_ptr<TimeIntegrator>
+    create_energy_momentum(dealii::ParameterHandler &prm,
+                           const MechanicalSystem   &system)
+    {
+      const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      const auto *body = dynamic_cast<const ElasticBody *>(&system);
+      if (body == nullptr)
+        throw std::invalid_argument(
+          "Time integration/Method = energy momentum works on a single "
+          "elastic body, and the system <" +
+          system.name() + "> is not one.");
+      return std::make_unique<EnergyMomentum>(*body,
+                                              parameters,
+                                              parameters.time_step);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_INTEGRATOR(
+  "energy momentum",
+  "a discrete-gradient energy-momentum scheme of one elastic body, solved by "
+  "SUNDIALS KINSOL at the fixed time step (subsection Implicit "
+  "integrators).",
+  estep::declare_implicit_parameters,
+  estep::create_energy_momentum)

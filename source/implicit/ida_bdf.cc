@@ -1,5 +1,9 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/implicit/ida_bdf.h>
+#include <estep/implicit/implicit_parameters.h>
 #include <estep/implicit/shifted_stiffness_solver.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include "sundials_support.h"
 #include <idas/idas.h>
@@ -274,4 +278,23 @@ namespace estep
             {"newton convergence failures",
              static_cast<std::uint64_t>(convergence_failures)}};
   }
+
+
+  namespace
+  {
+    std::unique_ptr<TimeIntegrator>
+    create_ida_bdf(dealii::ParameterHandler &prm,
+                   const MechanicalSystem   &system)
+    {
+      const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      return std::make_unique<IdaBdf>(system, parameters, parameters.time_step);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_INTEGRATOR(
+  "ida bdf",
+  "SUNDIALS IDA's variable-order, variable-step BDF method with local error "
+  "control (subsection Implicit integrators).",
+  estep::declare_implicit_parameters,
+  estep::create_ida_bdf)

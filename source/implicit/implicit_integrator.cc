@@ -1,6 +1,7 @@
 #include <estep/implicit/implicit_integrator.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace estep
 {
@@ -10,6 +11,11 @@ namespace estep
     , settings(parameters)
   {
     settings.check();
+    if (!system.has_hessian())
+      throw std::invalid_argument(
+        "Time integration/Method: the implicit integrators need the Hessian "
+        "(tangent stiffness) of the system, and the system <" +
+        system.name() + "> provides none.");
   }
 
 

@@ -2,6 +2,7 @@
 
 #include <estep/implicit/implicit_parameters.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace estep
@@ -11,8 +12,11 @@ namespace estep
   {
     const auto require = [](const bool ok, const std::string &message) {
       if (!ok)
-        throw std::invalid_argument("Implicit integrators: " + message);
+        throw std::invalid_argument("Time integration/Implicit integrators: " +
+                                    message);
     };
+    require(time_step > 0. && std::isfinite(time_step),
+            "the time step must be positive.");
     require(relative_tolerance > 0. && absolute_tolerance > 0.,
             "the relative and absolute tolerances must be positive.");
     require(maximum_bdf_order >= 1 && maximum_bdf_order <= 5,
@@ -43,6 +47,12 @@ namespace estep
     using dealii::Patterns::Selection;
     const ImplicitParameters d;
     prm.enter_subsection("Implicit integrators");
+    prm.declare_entry(
+      "Time step",
+      "1e-3",
+      Double(0., Double::max_double_value),
+      "The fixed time step of arkode midpoint and energy momentum; the "
+      "initial step of the adaptive methods (ida bdf, arkode irk).");
     prm.declare_entry(
       "Relative tolerance",
       "1e-6",
@@ -114,6 +124,7 @@ namespace estep
     auto              &prm = const_cast<dealii::ParameterHandler &>(prm_const);
     ImplicitParameters p;
     prm.enter_subsection("Implicit integrators");
+    p.time_step                 = prm.get_double("Time step");
     p.relative_tolerance        = prm.get_double("Relative tolerance");
     p.absolute_tolerance        = prm.get_double("Absolute tolerance");
     p.maximum_bdf_order         = prm.get_integer("Maximum BDF order");

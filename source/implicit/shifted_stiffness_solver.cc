@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <estep/base/mpi_session.h>
 #include <estep/implicit/shifted_stiffness_solver.h>
 
 #include <memory>
@@ -85,12 +86,8 @@ namespace estep
         "system, and the system <" +
         system.name() +
         "> provides none (for an elastic body use ElasticBodyWithHessian).");
-    if (parameters.linear_solver == ImplicitLinearSolver::cg_amg &&
-        !dealii::Utilities::MPI::job_supports_mpi())
-      throw std::runtime_error(
-        "Implicit integrators/Linear solver = cg amg uses Trilinos, which "
-        "needs MPI initialised (dealii::Utilities::MPI::MPI_InitFinalize) "
-        "before the integrator is built.");
+    if (parameters.linear_solver == ImplicitLinearSolver::cg_amg)
+      start_mpi(); // Trilinos talks to MPI
     implementation->H.reinit(system.hessian_sparsity());
     implementation->S.reinit(system.hessian_sparsity());
   }

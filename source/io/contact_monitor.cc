@@ -1,3 +1,5 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/io/contact_monitor.h>
 #include <estep/systems/contact_system.h>
 
@@ -33,9 +35,32 @@ namespace estep
 
 
 
-  ContactMonitor::ContactMonitor(const ContactSystem &system)
+  ContactMonitor::ContactMonitor(const ContactSystem  &system,
+                                 const TimeIntegrator &integrator,
+                                 const Vector         &q0,
+                                 const Vector         &v0)
     : system(system)
+    , integrator(integrator)
+    , q0(q0)
+    , v0(v0)
   {}
+
+
+
+  void
+  ContactMonitor::add_to_summary(JsonObject &out) const
+  {
+    out.add("contact",
+            summary(q0, v0, integrator.position(), integrator.velocity()));
+  }
+
+
+
+  std::string
+  ContactMonitor::final_report() const
+  {
+    return report(q0, v0, integrator.position(), integrator.velocity());
+  }
 
 
 
@@ -155,4 +180,31 @@ namespace estep
         << " intersecting face pairs at a step end";
     return out.str();
   }
+
+
+
+  namespace
+  {
+    std::unique_ptr<Postprocessor>
+    create_contact_monitor(dealii::ParameterHandler &,
+                           const PostprocessorContext &run)
+    {
+      const auto *contact = dynamic_cast<const ContactSystem *>(
+        &run.integrator.mechanical_system());
+      if (contact == nullptr)
+        return nullptr;
+      return std::make_unique<ContactMonitor>(*contact,
+                                              run.integrator,
+                                              run.q0,
+                                              run.v0);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "contact monitor",
+  "contact statistics of a system with contact (pairs, duration, "
+  "restitution, constraint events) in summary.json and a line at the end; "
+  "nothing for a system without contact.",
+  nullptr,
+  estep::create_contact_monitor)

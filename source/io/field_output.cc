@@ -1,14 +1,16 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <estep/base/json_writer.h>
+#include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/io/field_output.h>
-#include <estep/io/json_writer.h>
 #include <estep/io/vtu_file.h>
 
 #include <chrono>
@@ -82,8 +84,16 @@ namespace estep
                                                       format,
                                                       start_time,
                                                       interval))
+  {}
+
+
+
+  void
+  FieldOutput::start()
   {
     std::filesystem::create_directories(implementation->directory / "fields");
+    if (implementation->format == Format::hdf5)
+      start_mpi();
   }
 
 
@@ -93,9 +103,9 @@ namespace estep
 
 
   void
-  FieldOutput::finish()
+  FieldOutput::finish(const TimeLoopResult &result)
   {
-    if (implementation->pvd_pending)
+    if (result.status != RunStatus::failed && implementation->pvd_pending)
       implementation->write_pvd();
   }
 
@@ -222,4 +232,66 @@ namespace estep
     data_out.write_xdmf_file(self.xdmf_entries, xdmf + ".part", MPI_COMM_SELF);
     std::filesystem::rename(xdmf + ".part", xdmf);
   }
+
+
+
+  namespace
+  {
+    void
+    declare_field_output_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Field output");
+      prm.declare_entry("Interval",
+                        "0.1",
+                        dealii::Patterns::Double(
+                          0., dealii::Patterns::Double::max_double_value),
+                        "Write a snapshot every this much simulated time, "
+                        "from the start time on; must be positive.");
+      prm.declare_entry(
+        "Format",
+        "vtu",
+        dealii::Patterns::Selection("vtu|hdf5"),
+        "vtu: fields/solution-NNNNN.vtu and the time series solution.pvd; "
+        "hdf5: fields/solution-NNNNN.h5 and solution.xdmf.");
+      prm.leave_subsection();
+    }
+
+    std::unique_ptr<Postprocessor>
+    create_field_output(dealii::ParameterHandler   &prm,
+                        const PostprocessorContext &run)
+    {
+      prm.enter_subsection("Field output");
+      const double      interval = prm.get_double("Interval");
+      const std::string format   = prm.get("Format");
+      prm.leave_subsection();
+      const MechanicalSystem &system = run.integrator.mechanical_system();
+      const auto             *body = dynamic_cast<const ElasticBody *>(&system);
+      if (body == nullptr)
+        throw std::runtime_error("Postprocessors/List: field output: the "
+                                 "system <" +
+                                 system.name() + "> has no fields to write.");
+      if (!(interval > 0.))
+        throw std::runtime_error(
+          "Postprocessors/Field output/Interval: must be positive.");
+      if ((run.end_time - run.start_time) / interval > 1e5)
+        throw std::runtime_error(
+          "Postprocessors/Field output/Interval: would write more than "
+          "100000 snapshots over the run; choose a larger interval.");
+      return std::make_unique<FieldOutput>(*body,
+                                           run.output_directory,
+                                           format == "hdf5" ?
+                                             FieldOutput::Format::hdf5 :
+                                             FieldOutput::Format::vtu,
+                                           run.start_time,
+                                           interval);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "field output",
+  "snapshots of an elastic body's fields for ParaView (displacement, "
+  "velocity, J, strain energy density) in fields/, with a time series file "
+  "(subsection Field output).",
+  estep::declare_field_output_parameters,
+  estep::create_field_output)

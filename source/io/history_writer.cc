@@ -1,6 +1,9 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/io/history_writer.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
 #include <limits>
 #include <stdexcept>
@@ -12,10 +15,16 @@ namespace estep
     : integrator(integrator)
     , filename(filename)
     , start_time(integrator.time())
-    , out(filename)
     , smallest_step_since_row(std::numeric_limits<double>::infinity())
     , largest_step_since_row(0.)
+  {}
+
+
+
+  void
+  HistoryWriter::start()
   {
+    out.open(filename);
     if (!out)
       throw std::runtime_error("Cannot open the history file <" + filename +
                                "> for writing.");
@@ -82,4 +91,25 @@ namespace estep
     smallest_step_since_row = std::min(smallest_step_since_row, step);
     largest_step_since_row  = std::max(largest_step_since_row, step);
   }
+
+
+
+  namespace
+  {
+    std::unique_ptr<Postprocessor>
+    create_history(dealii::ParameterHandler &, const PostprocessorContext &run)
+    {
+      return std::make_unique<HistoryWriter>(
+        (std::filesystem::path(run.output_directory) / "history.csv").string(),
+        run.integrator);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "history",
+  "history.csv: a row every Output/History interval with the time, the "
+  "energies, the momenta, the step statistics and the system's observables "
+  "(e.g. a tracked point).",
+  nullptr,
+  estep::create_history)

@@ -1,24 +1,37 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/io/progress_log.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace estep
 {
-  ProgressLog::ProgressLog(const std::string &filename,
-                           const double       start_time,
-                           const double       end_time,
-                           const double       interval,
-                           const bool         to_standard_output)
+  ProgressLog::ProgressLog(const std::string    &filename,
+                           const TimeIntegrator &integrator,
+                           const double          start_time,
+                           const double          end_time,
+                           const double          interval,
+                           const bool            terminal)
     : filename(filename)
+    , integrator(integrator)
     , start_time(start_time)
     , end_time(end_time)
     , interval(interval)
-    , to_standard_output(to_standard_output)
-    , out(filename)
+    , to_standard_output(!terminal)
+    , line(terminal ? std::make_unique<ProgressLine>(start_time, end_time) :
+                      nullptr)
     , wall_start(std::chrono::steady_clock::now())
     , last_line(wall_start)
+  {}
+
+
+
+  void
+  ProgressLog::start()
   {
+    out.open(filename);
     if (!out)
       throw std::runtime_error("Cannot open the log file <" + filename +
                                "> for writing.");
@@ -29,6 +42,8 @@ namespace estep
   void
   ProgressLog::after_step(const TimeIntegrator &integrator)
   {
+    if (line)
+      line->after_step(integrator);
     if (std::chrono::steady_clock::now() - last_line >= interval)
       write(integrator, "");
   }
@@ -36,10 +51,11 @@ namespace estep
 
 
   void
-  ProgressLog::finish(const TimeIntegrator &integrator,
-                      const std::string    &status)
+  ProgressLog::finish(const TimeLoopResult &result)
   {
-    write(integrator, ", " + status);
+    line.reset();
+    if (result.status != RunStatus::failed)
+      write(integrator, ", " + to_string(result.status));
   }
 
 
@@ -71,4 +87,56 @@ namespace estep
       throw OutputFailed("Writing the log file <" + filename +
                          "> failed (is the disk full?).");
   }
+
+
+
+  namespace
+  {
+    void
+    declare_progress_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Progress");
+      prm.declare_entry(
+        "Mode",
+        "auto",
+        dealii::Patterns::Selection("auto|terminal|batch"),
+        "terminal: a line on standard error rewritten in place; batch: a "
+        "line every Interval on standard output; auto: terminal when "
+        "standard error is a terminal, batch otherwise. Either way the "
+        "periodic lines go to log.txt in the output directory, with a last "
+        "line saying how the run ended.");
+      prm.declare_entry("Interval",
+                        "10",
+                        dealii::Patterns::Double(
+                          0.1, dealii::Patterns::Double::max_double_value),
+                        "Wall-clock seconds between two lines of the log.");
+      prm.leave_subsection();
+    }
+
+    std::unique_ptr<Postprocessor>
+    create_progress(dealii::ParameterHandler   &prm,
+                    const PostprocessorContext &run)
+    {
+      prm.enter_subsection("Progress");
+      const std::string mode     = prm.get("Mode");
+      const double      interval = prm.get_double("Interval");
+      prm.leave_subsection();
+      return std::make_unique<ProgressLog>(
+        (std::filesystem::path(run.output_directory) / "log.txt").string(),
+        run.integrator,
+        run.start_time,
+        run.end_time,
+        interval,
+        mode == "terminal" ||
+          (mode == "auto" && ProgressLine::stderr_is_terminal()));
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "progress",
+  "progress lines (simulated time, steps per second, time left) on the "
+  "terminal or, in a batch job, on standard output, and in log.txt "
+  "(subsection Progress).",
+  estep::declare_progress_parameters,
+  estep::create_progress)

@@ -1,26 +1,27 @@
-#include <estep/io/json_writer.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <estep/base/json_writer.h>
 #include <estep/io/step_histogram.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace estep
 {
-  StepHistogram::StepHistogram()
-    : bins((max_exponent - min_exponent) * bins_per_decade, 0)
+  StepHistogram::StepHistogram(const std::string &filename,
+                               const double       end_time)
+    : filename(filename)
+    , end_time(end_time)
+    , bins((max_exponent - min_exponent) * bins_per_decade, 0)
   {}
 
-  void
-  StepHistogram::set_end_time(const double t_end)
-  {
-    end_time = t_end;
-    has_end  = true;
-  }
+
 
   void
   StepHistogram::after_step(const TimeIntegrator &integrator)
   {
-    if (has_end && integrator.time() == end_time)
+    if (integrator.time() == end_time)
       return;
     const double dt = integrator.time() - integrator.previous_time();
     if (!(dt > 0.))
@@ -32,7 +33,7 @@ namespace estep
   }
 
   void
-  StepHistogram::write(const std::string &filename) const
+  StepHistogram::finish(const TimeLoopResult &)
   {
     std::size_t first = 0, last = bins.size();
     while (first < last && bins[first] == 0)
@@ -48,4 +49,26 @@ namespace estep
           << ',' << bins[i] << '\n';
     write_file_atomically(filename, out.str());
   }
+
+
+
+  namespace
+  {
+    std::unique_ptr<Postprocessor>
+    create_step_histogram(dealii::ParameterHandler &,
+                          const PostprocessorContext &run)
+    {
+      return std::make_unique<StepHistogram>(
+        (std::filesystem::path(run.output_directory) / "step_histogram.csv")
+          .string(),
+        run.end_time);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "step histogram",
+  "step_histogram.csv: the number of time steps in logarithmic bins of their "
+  "length (ten per decade), written at the end.",
+  nullptr,
+  estep::create_step_histogram)

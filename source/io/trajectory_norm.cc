@@ -1,3 +1,5 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/io/trajectory_norm.h>
 
 #include <cmath>
@@ -23,4 +25,31 @@ namespace estep
   {
     return std::sqrt(integral);
   }
+
+
+
+  void
+  TrajectoryNorm::add_to_summary(JsonObject &summary) const
+  {
+    summary.add("h1 norm", h1_norm());
+  }
+
+
+
+  namespace
+  {
+    std::unique_ptr<Postprocessor>
+    create_trajectory_norm(dealii::ParameterHandler &,
+                           const PostprocessorContext &)
+    {
+      return std::make_unique<TrajectoryNorm>();
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_POSTPROCESSOR(
+  "h1 norm",
+  "the H1 norm of the trajectory, (integral |q|^2 + |q'|^2 dt)^(1/2), in "
+  "summary.json.",
+  nullptr,
+  estep::create_trajectory_norm)

@@ -13,6 +13,22 @@ namespace estep
   } // namespace
 
   double
+  Material::small_strain_lambda() const
+  {
+    return volumetric_second_derivative(1.) - quadratic_modulus();
+  }
+
+
+
+  double
+  Material::small_strain_mu() const
+  {
+    return quadratic_modulus();
+  }
+
+
+
+  double
   Material::reference_energy_density() const
   {
     return volumetric_energy(1.) + 1.5 * quadratic_modulus();

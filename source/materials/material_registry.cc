@@ -23,7 +23,7 @@ namespace estep
                       "neo-Hookean",
                       dealii::Patterns::Selection(material_registry().names()),
                       "The strain energy of the body, one of the registered "
-                      "materials; each reads the subsection of its own name. " +
+                      "materials; each reads a subsection of its own:" +
                         material_registry().descriptions());
     prm.declare_entry(
       "Density",

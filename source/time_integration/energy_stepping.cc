@@ -1,4 +1,7 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/time_integration/energy_stepping.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include <cmath>
 #include <limits>
@@ -52,7 +55,8 @@ namespace estep
     departure    = Departure::interior;
     last_flight  = 0.;
     gradient_buffer.reinit(q0.size());
-    E_h0 = terraced_energy();
+    E_h0         = terraced_energy();
+    energy_scale = std::abs(kinetic_energy(system, v0)) + std::abs(V0);
   }
 
 
@@ -249,4 +253,84 @@ namespace estep
              search_statistics.max_intervals_in_one_search},
             {"gradient evaluations", n_gradients}};
   }
+
+
+
+  void
+  EnergyStepping::add_energies_to_summary(JsonObject &energies) const
+  {
+    energies.add("energy step", h)
+      .add("terrace offset", c)
+      .add("initial terraced energy", E_h0)
+      .add("final terraced energy", terraced_energy())
+      .add("terraced energy drift",
+           relative_drift(E_h0, terraced_energy(), energy_scale));
+  }
+
+
+
+  std::vector<std::string>
+  EnergyStepping::warnings() const
+  {
+    if (h <= energy_scale)
+      return {};
+    std::ostringstream text;
+    text << "Time integration/Energy stepping/Energy step: h = " << h
+         << " exceeds the initial energy scale |T| + |V| = " << energy_scale
+         << " of the system: its terraces are coarser than the motion and "
+            "the results say little.";
+    return {text.str()};
+  }
+
+
+
+  namespace
+  {
+    void
+    declare_energy_stepping_parameters(dealii::ParameterHandler &prm)
+    {
+      const double max = dealii::Patterns::Double::max_double_value;
+      prm.enter_subsection("Energy stepping");
+      prm.declare_entry(
+        "Energy step",
+        "1e-3",
+        dealii::Patterns::Double(0., max),
+        "Energy step h (energy units of the system); must be positive. "
+        "The time steps follow from it.");
+      prm.declare_entry(
+        "Terrace offset",
+        "0",
+        dealii::Patterns::Double(0., 1.),
+        "Where the levels lie, as a fraction c of the energy step: at (k + "
+        "c) h for every integer k. This is the additive constant of V that "
+        "the method leaves free; 0 is the reference text's choice. Must be "
+        "smaller than 1.");
+      prm.leave_subsection();
+    }
+
+    std::unique_ptr<TimeIntegrator>
+    create_energy_stepping(dealii::ParameterHandler &prm,
+                           const MechanicalSystem   &system)
+    {
+      prm.enter_subsection("Energy stepping");
+      const double h = prm.get_double("Energy step");
+      const double c = prm.get_double("Terrace offset");
+      prm.leave_subsection();
+      if (!(h > 0.))
+        throw std::runtime_error(
+          "Time integration/Energy stepping/Energy step: must be positive.");
+      if (!(c < 1.))
+        throw std::runtime_error("Time integration/Energy stepping/Terrace "
+                                 "offset: must be smaller than 1.");
+      return std::make_unique<EnergyStepping>(system, h, c);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_INTEGRATOR(
+  "energy stepping",
+  "the exact flow of the terraced potential (k + c) h, k = floor(V/h - c): "
+  "straight flights between level crossings found by a certified search, "
+  "momentum jumps at the crossings (subsection Energy stepping).",
+  estep::declare_energy_stepping_parameters,
+  estep::create_energy_stepping)

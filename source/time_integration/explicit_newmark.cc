@@ -1,4 +1,7 @@
+#include <deal.II/base/parameter_handler.h>
+
 #include <estep/time_integration/explicit_newmark.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -57,9 +60,10 @@ namespace estep
     const double remaining = t_limit - t;
     if (!(remaining > 0.))
       return;
-    // Shorten the last step so the run ends on t_limit (no step of round-off
-    // length).
-    const double tau = (remaining < dt * (1. + 1e-12)) ? remaining : dt;
+    // End on t_limit with the last step, stretched if need be by the
+    // round-off that the sum of the earlier steps accumulated (up to 1e-6
+    // dt), never followed by a step of round-off length.
+    const double tau = (remaining < dt * (1. + 1e-6)) ? remaining : dt;
 
     q_old = q;
     v_old = v;
@@ -100,4 +104,41 @@ namespace estep
   {
     return {{"steps", steps}, {"gradient evaluations", n_gradients}};
   }
+
+
+
+  namespace
+  {
+    void
+    declare_explicit_newmark_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Explicit Newmark");
+      prm.declare_entry("Time step",
+                        "1e-3",
+                        dealii::Patterns::Double(
+                          0., dealii::Patterns::Double::max_double_value),
+                        "The fixed time step; must be positive.");
+      prm.leave_subsection();
+    }
+
+    std::unique_ptr<TimeIntegrator>
+    create_explicit_newmark(dealii::ParameterHandler &prm,
+                            const MechanicalSystem   &system)
+    {
+      prm.enter_subsection("Explicit Newmark");
+      const double dt = prm.get_double("Time step");
+      prm.leave_subsection();
+      if (!(dt > 0.))
+        throw std::runtime_error(
+          "Time integration/Explicit Newmark/Time step: must be positive.");
+      return std::make_unique<ExplicitNewmark>(system, dt);
+    }
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_INTEGRATOR(
+  "explicit newmark",
+  "the explicit Newmark method (beta = 0, gamma = 1/2; velocity Verlet) at a "
+  "fixed time step (subsection Explicit Newmark).",
+  estep::declare_explicit_newmark_parameters,
+  estep::create_explicit_newmark)

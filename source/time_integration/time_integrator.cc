@@ -55,4 +55,26 @@ namespace estep
     snapshot.terraced_potential_energy = snapshot.potential_energy;
     return snapshot;
   }
+
+
+
+  void
+  TimeIntegrator::add_energies_to_summary(JsonObject &) const
+  {}
+
+
+
+  std::vector<std::string>
+  TimeIntegrator::warnings() const
+  {
+    return {};
+  }
+
+
+
+  double
+  relative_drift(const double a, const double b, const double scale)
+  {
+    return std::abs(b - a) / (std::abs(a) > 1e-14 * scale ? std::abs(a) : 1.);
+  }
 } // namespace estep

@@ -46,7 +46,13 @@ expect 0 "Usage: estep" -- --help
 expect 0 "Usage: estep" -- -h
 expect 0 "^estep [0-9]+\.[0-9]+\.[0-9]+ \(deal.II 9\." -- --version
 expect 0 "set Energy step" -- --print-parameters
-expect 0 "# Energy step h of energy stepping" -- --print-parameters
+expect 0 "# Energy step h \(energy units of the system\)" -- --print-parameters
+# The Selection patterns and documentation come from the registries.
+expect 0 "^ *# - colliding balls: Two elastic balls" -- --print-parameters
+expect 0 "^ *# - explicit newmark: the explicit Newmark method" -- --print-parameters
+expect 0 "^ *# - neo-Hookean: W\(F\) =" -- --print-parameters
+expect 0 "^ *# - field output: snapshots of an elastic body" -- --print-parameters
+expect 0 "Time integration/Method: +arkode irk, arkode midpoint, energy momentum, energy stepping, explicit newmark, ida bdf" -- --help
 expect 0 "set End time += 2" -- --print-parameters run.prm
 expect 0 "set End time += 7" -- --print-parameters run.prm --set "Time integration/End time=7"
 "$ESTEP" --print-parameters > all.prm
@@ -69,9 +75,9 @@ for file in parameters.prm history.csv summary.json step_histogram.csv; do
 done
 grep -q '"status": "completed"' run/summary.json || fail "summary.json lacks status completed"
 tail -n 1 run/log.txt | grep -Eq "^estep: t = 2 \(100.0%\), [0-9]+ steps, .*, completed$" || fail "log.txt lacks its last line: $(tail -n 1 run/log.txt)"
-expect 0 "estep: t = [0-9.e+-]+ \([0-9.]+%\), [0-9]+ steps" -- run.prm -s "Output directory=batch" -s "Time integration/End time=1000" -s "Output/History interval=1" -s "Output/Progress interval=0.1"
+expect 0 "estep: t = [0-9.e+-]+ \([0-9.]+%\), [0-9]+ steps" -- run.prm -s "Output directory=batch" -s "Time integration/End time=1000" -s "Output/History interval=1" -s "Postprocessors/Progress/Interval=0.1"
 (( $(wc -l < batch/log.txt) >= 2 )) || fail "a batch run of several tenths of a second logged fewer than two lines"
-expect 0 "completed" -- run.prm -s "Output directory=nolog" -s "Output/Progress=off"
+expect 0 "completed" -- run.prm -s "Output directory=nolog" -s "Postprocessors/List=history, step histogram"
 [[ ! -e nolog/log.txt ]] || fail "Progress = off wrote log.txt"
 grep -q '"final time": 2' run/summary.json || fail "summary.json lacks the final time"
 grep -q '"wall seconds"' run/summary.json || fail "summary.json lacks the wall time"
@@ -107,8 +113,20 @@ printf 'set Output directory = run\nsubsection Time integration\n  set End time 
 expect 1 "unequal numbers of 'subsection' and 'end'" -- unbalanced.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set Energy stepp = 1\nend\n' > unknown.prm
 expect 1 "Line <3> of file <unknown.prm>.*Energy stepp" -- unknown.prm
-printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = -1\nend\n' > pattern.prm
-expect 1 "Line <3> of file <pattern.prm>.*Energy step" -- pattern.prm
+printf 'set Output directory = run\nsubsection Time integration\n  subsection Energy stepping\n    set Energy step = -1\n  end\nend\n' > pattern.prm
+expect 1 "Line <4> of file <pattern.prm>.*Energy step" -- pattern.prm
+# Entries of the earlier input layout: the message names where they went.
+printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = 1e-3\nend\n' > renamed.prm
+expect 1 "Line <3> of file <renamed.prm>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.prm
+expect 1 "Output/Field output interval is now Postprocessors/Field output/Interval, with field output in Postprocessors/List" -- run.prm -s "Output/Field output interval=1"
+# An unknown plugin: one line with the valid names.
+expect 1 "<leapfrog> does not match the given pattern <\[Selection arkode irk\|arkode midpoint\|energy momentum\|energy stepping\|explicit newmark\|ida bdf \]>" -- run.prm -s "Time integration/Method=leapfrog"
+expect 1 "<sponge>.*\[Selection neo-Hookean" -- run.prm -s "Material/Model=sponge"
+expect 1 "<history, spreadsheet>.*MultipleSelection contact monitor" -- run.prm -s "Postprocessors/List=history, spreadsheet"
+expect 1 "Postprocessors/List: <history> is listed twice" -- run.prm -s "Postprocessors/List=history, history"
+# Plugin libraries: a missing one, and one that registers a name taken already.
+expect 1 "Additional shared libraries: cannot load <./missing_plugin.so>" -- run.prm -s "Additional shared libraries=./missing_plugin.so"
+expect 1 "Additional shared libraries: <$ESTEP_DUPLICATE_PLUGIN>: Two time integrator plugins are registered under the name <energy stepping>\.$" -- run.prm -s "Additional shared libraries=$ESTEP_DUPLICATE_PLUGIN"
 printf 'set Output directory = run\nsubsection Time integration\n  set Method = leapfrog\nend\n' > selection.prm
 expect 1 "leapfrog.*Method" -- selection.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set End time = -1\nend\n' > times.prm
@@ -132,16 +150,16 @@ printf '\xEF\xBB\xBFset Output directory = bom\nsubsection Time integration\n  s
 expect 0 "completed at t = 0.5" -- bom.prm
 expect 1 "Particle mass, Epsilon over Boltzmann constant and Sigma must be positive" -- run.prm -s "Argon cluster/Particle mass=0"
 cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=1"
-      -s "Time integration/End time=0.1" -s "Output/Field output interval=0")
+      -s "Time integration/End time=0.1" -s "Postprocessors/List=history, step histogram, progress")
 expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
 expect 1 "initial velocity of the elastic body is not finite" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 expect 1 "generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
-expect 1 "has no fields to write" -- run.prm -s "Output/Field output interval=0.1"
+expect 1 "has no fields to write" -- run.prm -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"
 
 # A run that blows up: status unstable in summary.json, a clear message, exit code 2.
-expect 2 "became unstable" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Time step=0.5" -s "Output directory=blowup"
+expect 2 "became unstable" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Explicit Newmark/Time step=0.5" -s "Output directory=blowup"
 grep -q '"status": "unstable"' blowup/summary.json || fail "summary.json of a blow-up lacks status unstable"
 grep -q '"message": "The run became unstable' blowup/summary.json || fail "summary.json of a blow-up lacks the message"
 if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up holds non-finite values"; fi
@@ -149,17 +167,17 @@ if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up h
 # Times that floating point cannot step through, and runaway output intervals: input errors.
 expect 1 "End time: the time span .* below the resolution" -- run.prm -s "Time integration/Start time=1e16" -s "Time integration/End time=1.000000000000001e16"
 expect 1 "History interval: below the resolution" -- run.prm -s "Output/History interval=1e-300"
-expect 1 "Field output interval: would write more than" -- run.prm -s "Output/Field output interval=1e-9"
+expect 1 "Field output/Interval: would write more than" -- "${cube[@]}" -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=1e-9"
 
 # A run whose crossing search crawls at round-off (V overflows) ends as stalled, exit code 3,
 # naming the time and the energy step (the cap on the search's work, not a hang).
-expect 3 "stalled at t = .* energy step h = 1e-05" -- "${cube[@]}" -s "Elastic body/Material/Mu=1e300" -s "Output directory=stalled"
+expect 3 "stalled at t = .* energy step h = 1e-05" -- "${cube[@]}" -s "Material/Neo-Hookean/Mu=1e300" -s "Output directory=stalled"
 grep -q '"status": "stalled"' stalled/summary.json || fail "summary.json of a stalled run lacks status stalled"
 # A stiff cube whose reflections return within the round-off band of their level: it completes.
-expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisions=2" -s "Elastic body/Material/Mu=2e7" -s "Output directory=stiff"
+expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisions=2" -s "Material/Neo-Hookean/Mu=2e7" -s "Output directory=stiff"
 
 # An energy step above the system's energy scale: a warning that says the results mean little.
-expect 0 "warning: Time integration/Energy step: h = 100 exceeds the initial energy scale" -- run.prm -s "Time integration/Energy step=100" -s "Output directory=coarse"
+expect 0 "warning: Time integration/Energy stepping/Energy step: h = 100 exceeds the initial energy scale" -- run.prm -s "Time integration/Energy stepping/Energy step=100" -s "Output directory=coarse"
 
 # An output that cannot be written (history.csv on a full device): status failed, exit code 4,
 # the file named; the summary written first says running, then failed.

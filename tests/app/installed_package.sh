@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Install estep into a temporary prefix, then build and run the user project of
-# doc/example_project against the installed package (find_package(estep), estep::estep).
+# Install estep into a temporary prefix, build the user plugins of doc/example_project against the
+# installed package (find_package(estep), estep::estep), and run them through the installed estep
+# command: the spring problem by energy-stepping (completed, the terraced energy and the orbit's
+# radius kept), then by the plugin integrator with the plugin postprocessor.
 set -eu
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -11,5 +13,29 @@ cmake -S "$ESTEP_SOURCE_DIR/doc/example_project" -B "$work/build" \
   -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }
 cmake --build "$work/build" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-"$work/build/spring"
-echo "the installed package works"
+cd "$work/build"
+"$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/doc/example_project/spring.prm" \
+  -s "Postprocessors/List=history, step histogram"
+"$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/doc/example_project/spring.prm" \
+  -s "Postprocessors/List=history, max speed" -s "Output directory=euler_output" \
+  -s "Time integration/Method=symplectic euler" \
+  -s "Time integration/Symplectic Euler/Time step=1e-3"
+python3 - <<'PY'
+import csv, json
+s = json.load(open("spring_output/summary.json"))
+assert s["status"] == "completed", s["status"]
+assert s["system"] == "spring", s["system"]
+drift = s["energies"]["terraced energy drift"]
+assert drift < 1e-12, f"terraced energy drift {drift}"
+assert s["counters"]["steps"] > 100, s["counters"]
+radii = [float(row["radius"]) for row in csv.DictReader(open("spring_output/history.csv"))]
+assert len(radii) == 21 and max(abs(r - 1) for r in radii) < 1e-2, radii
+e = json.load(open("euler_output/summary.json"))
+assert e["status"] == "completed" and e["method"] == "symplectic euler", e["status"]
+assert e["counters"]["steps"] == 10000, e["counters"]
+# |v| = 1 on the circle; symplectic Euler's orbit stays within O(dt) of it.
+assert abs(e["max speed"]["value"] - 1) < 2e-3, e["max speed"]
+assert e["energies"]["total energy drift"] < 2e-3, e["energies"]
+print(f"the plugins ran through the installed estep: {s['counters']['steps']} steps, "
+      f"terraced energy drift {drift:.1e}, radius within {max(abs(r - 1) for r in radii):.1e} of 1")
+PY

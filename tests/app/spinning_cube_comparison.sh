@@ -78,8 +78,8 @@ grep -q "^| energy_stepping | energy stepping | h = 1e-5 " "$out/comparison.md" 
 # whose first Newton solve the wrapper makes fail (status unstable, exit code 2).
 cat > "$work/unstable_estep" <<EOF
 #!/usr/bin/env bash
-exec "$ESTEP" "\$@" -s "Implicit integrators/Maximum Newton iterations=1" \\
-  -s "Implicit integrators/Newton tolerance=1e-15"
+exec "$ESTEP" "\$@" -s "Time integration/Implicit integrators/Maximum Newton iterations=1" \\
+  -s "Time integration/Implicit integrators/Newton tolerance=1e-15"
 EOF
 chmod +x "$work/unstable_estep"
 rm -f "$out/arkode_midpoint/summary.json"

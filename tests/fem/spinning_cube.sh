@@ -11,7 +11,7 @@ prm="$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm"
 failures=0
 
 "$ESTEP" "$prm" -s "Output directory=es" -s "Time integration/End time=4" \
-  -s "Output/Field output interval=2" > es.log 2>&1 || { cat es.log; failures=$((failures + 1)); }
+  -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=2" > es.log 2>&1 || { cat es.log; failures=$((failures + 1)); }
 "$ESTEP" "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube_newmark_0.0381.prm" \
   -s "Output directory=unstable" -s "Time integration/End time=250" > unstable.log 2>&1
 rc=$?
@@ -22,8 +22,8 @@ rc=$?
 
 # Field output through HDF5/XDMF on a coarse cube: one .h5 per output time, all in the series.
 "$ESTEP" "$prm" -s "Output directory=h5" -s "Elastic body/Mesh/Subdivisions=2" \
-  -s "Time integration/End time=1" -s "Output/Field output interval=0.5" \
-  -s "Output/Field output format=hdf5" > h5.log 2>&1 || { cat h5.log; failures=$((failures + 1)); }
+  -s "Time integration/End time=1" -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.5" \
+  -s "Postprocessors/Field output/Format=hdf5" > h5.log 2>&1 || { cat h5.log; failures=$((failures + 1)); }
 for k in 0 1 2; do
   [[ -s h5/fields/solution-0000$k.h5 ]] || { echo "missing h5/fields/solution-0000$k.h5"; failures=$((failures + 1)); }
 done

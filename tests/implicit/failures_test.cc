@@ -4,9 +4,9 @@
 // abort.
 #include <deal.II/base/parameter_handler.h>
 
-#include <estep/implicit/create_implicit_integrator.h>
 #include <estep/implicit/implicit_integrator.h>
 #include <estep/implicit/implicit_parameters.h>
+#include <estep/time_integration/integrator_registry.h>
 
 #include <gtest/gtest.h>
 
@@ -23,6 +23,23 @@ namespace
   {
     static const auto body = estep_test::cube_with_hessian(1);
     return *body;
+  }
+
+  /** The implicit integrator @p method from @p prm (the subsection Implicit
+   * integrators at its top level) with the time step @p dt, as the registry
+   * builds it. */
+  std::unique_ptr<estep::TimeIntegrator>
+  create(const std::string             &method,
+         dealii::ParameterHandler      &prm,
+         const estep::MechanicalSystem &system,
+         const double                   dt)
+  {
+    prm.enter_subsection("Implicit integrators");
+    prm.set("Time step", dt);
+    prm.leave_subsection();
+    return estep::integrator_registry()
+      .get(method, "Time integration/Method")
+      .create(prm, system);
   }
 
   /** A ParameterHandler with the implicit subsection, and @p text parsed. */
@@ -66,8 +83,7 @@ namespace
     for (const std::string method :
          {"ida bdf", "arkode midpoint", "arkode irk", "energy momentum"})
       {
-        const auto integrator =
-          estep::create_implicit_integrator(method, prm, tiny_cube(), 0.1);
+        const auto integrator = create(method, prm, tiny_cube(), 0.1);
         EXPECT_EQ(integrator->name(), method);
         const auto run = estep_test::run_cube(tiny_cube(), *integrator, 1.);
         EXPECT_EQ(run.result.status, estep::RunStatus::completed)
@@ -84,12 +100,12 @@ namespace
     parse(prm, "");
     try
       {
-        estep::create_implicit_integrator("bdf9", prm, tiny_cube(), 0.1);
+        create("bdf9", prm, tiny_cube(), 0.1);
         FAIL() << "no exception";
       }
-    catch (const std::invalid_argument &e)
+    catch (const std::runtime_error &e)
       {
-        EXPECT_NE(std::string(e.what()).find("Unknown implicit method"),
+        EXPECT_NE(std::string(e.what()).find("there is no time integrator"),
                   std::string::npos);
       }
     // A system without a Hessian: a plain ElasticBody.
@@ -99,7 +115,7 @@ namespace
       tria, std::make_shared<estep::NeoHookean>(0.01, 0.0066), 0.1);
     try
       {
-        estep::create_implicit_integrator("ida bdf", prm, plain, 0.1);
+        create("ida bdf", prm, plain, 0.1);
         FAIL() << "no exception";
       }
     catch (const std::invalid_argument &e)
@@ -117,8 +133,7 @@ namespace
           "subsection Implicit integrators\n"
           "  set Maximum Newton iterations = 1\n" +
             extra + "end\n");
-    const auto integrator =
-      estep::create_implicit_integrator(method, prm, tiny_cube(), 5.);
+    const auto integrator = create(method, prm, tiny_cube(), 5.);
     const auto result =
       estep_test::run_cube(tiny_cube(), *integrator, 20.).result;
     testing::Test::RecordProperty("message", result.message);
@@ -179,10 +194,7 @@ namespace
           "subsection Implicit integrators\n"
           "  set Maximum Newton iterations = 1\n"
           "end\n");
-    const auto integrator = estep::create_implicit_integrator("energy momentum",
-                                                              prm,
-                                                              tiny_cube(),
-                                                              5.);
+    const auto integrator  = create("energy momentum", prm, tiny_cube(), 5.);
     const estep::Vector q0 = tiny_cube().reference_configuration();
     integrator->initialize(0.,
                            q0,

@@ -6,7 +6,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <estep/app/argon_cluster_problem.h>
+#include <estep/problems/problem.h>
 
 namespace estep::testing
 {
@@ -14,8 +14,11 @@ namespace estep::testing
   argon_cluster()
   {
     dealii::ParameterHandler prm;
-    ArgonClusterProblem::declare_parameters(prm);
-    return ArgonClusterProblem::create(prm);
+    declare_problem_parameters(prm);
+    prm.enter_subsection("Problem");
+    prm.set("System", "argon cluster");
+    prm.leave_subsection();
+    return create_problem(prm);
   }
 } // namespace estep::testing
 

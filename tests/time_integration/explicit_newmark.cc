@@ -76,6 +76,25 @@ namespace
     EXPECT_NEAR(m1.angular[2], m0.angular[2], 1e-12 * std::abs(m0.angular[2]));
     EXPECT_NEAR(m1.linear[0], m0.linear[0], 1e-12);
   }
+  /** A span that is a whole number of steps takes exactly that number: the
+   * round-off that the sum of the steps accumulates stretches the last one a
+   * little instead of adding a step of round-off length. */
+  TEST(ExplicitNewmark, WholeNumberOfStepsLeavesNoRoundOffStep)
+  {
+    const Problem   argon = estep::testing::argon_cluster();
+    ExplicitNewmark newmark(*argon.system, 0.0125);
+    newmark.initialize(0., argon.q0, argon.v0);
+    TimeLoopSettings settings;
+    settings.end_time           = 10.;
+    settings.output_interval    = 0.1;
+    const TimeLoopResult result = run_time_loop(newmark, settings, {});
+    ASSERT_EQ(result.status, RunStatus::completed);
+    EXPECT_EQ(newmark.n_steps(), 800u);
+    EXPECT_GT(newmark.min_step(), 0.0125 * (1. - 1e-6));
+    EXPECT_LT(newmark.max_step(), 0.0125 * (1. + 1e-6));
+    EXPECT_EQ(newmark.time(), 10.);
+  }
+
   /** The closed-form motion of the oscillator solves M q'' = -K q. */
   TEST(HarmonicOscillator, ExactStateSolvesTheEquationsOfMotion)
   {

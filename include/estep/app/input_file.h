@@ -16,11 +16,16 @@ namespace estep
    * .prm file may begin with a UTF-8 byte-order mark (it is dropped); its
    * `include` lines (resolved as deal.II resolves them, from the working
    * directory) may neither form a cycle nor nest deeper than 32 files; a JSON
-   * file may not nest deeper than 64 levels. Each violation is a
-   * std::runtime_error naming the file and line.
+   * file may not nest deeper than 64 levels; an entry of an earlier version
+   * of the input that has moved is named with its new place. Each violation
+   * is a std::runtime_error naming the file and line. @p skip_undeclared:
+   * ignore entries and subsections @p prm does not declare (a first reading
+   * for a few entries).
    */
   void
-  read_input_file(dealii::ParameterHandler &prm, const std::string &filename);
+  read_input_file(dealii::ParameterHandler &prm,
+                  const std::string        &filename,
+                  const bool                skip_undeclared = false);
 } // namespace estep
 
 #endif

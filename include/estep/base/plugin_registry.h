@@ -75,13 +75,13 @@ namespace estep
               name + ">.");
           else
             {
-              const auto position = std::lower_bound(
-                entries.begin(),
-                entries.end(),
-                name,
-                [](const Plugin &p, const std::string &n) {
-                  return p.name < n;
-                });
+              const auto position =
+                std::lower_bound(entries.begin(),
+                                 entries.end(),
+                                 name,
+                                 [](const Plugin &p, const std::string &n) {
+                                   return p.name < n;
+                                 });
               entries.insert(position, std::move(plugin));
             }
         }
@@ -125,14 +125,13 @@ namespace estep
       return text;
     }
 
-    /** One paragraph per plugin, "name: description", for documentation. */
+    /** One line per plugin, "- name: description", for documentation. */
     std::string
     descriptions() const
     {
       std::string text;
       for (const Plugin &plugin : entries)
-        text += (text.empty() ? "" : " ") + plugin.name + ": " +
-                plugin.description;
+        text += "\n- " + plugin.name + ": " + plugin.description;
       return text;
     }
 
@@ -173,12 +172,11 @@ namespace estep
  * Plugin: name, description, declare_parameters, create. The extension points'
  * macros (ESTEP_REGISTER_MATERIAL, ...) expand to this.
  */
-#define ESTEP_REGISTER_PLUGIN(registry, ...)                  \
-  namespace                                                   \
-  {                                                           \
-    const bool estep_plugin_concatenate(estep_registered_,    \
-                                        __LINE__) =           \
-      (registry).add({__VA_ARGS__});                          \
+#define ESTEP_REGISTER_PLUGIN(registry, ...)                           \
+  namespace                                                            \
+  {                                                                    \
+    const bool estep_plugin_concatenate(estep_registered_, __LINE__) = \
+      (registry).add({__VA_ARGS__});                                   \
   }
 
 #endif

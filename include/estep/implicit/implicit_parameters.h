@@ -29,6 +29,10 @@ namespace estep
    */
   struct ImplicitParameters
   {
+    /** The fixed step of "arkode midpoint" and "energy momentum"; the initial
+     * step of the adaptive methods. */
+    double time_step = 1e-3;
+
     /** Relative local error tolerance of the adaptive methods ("ida bdf",
      * "arkode irk"). */
     double relative_tolerance = 1e-6;

@@ -1,8 +1,8 @@
 #ifndef estep_io_contact_monitor_h
 #define estep_io_contact_monitor_h
 
-#include <estep/io/json_writer.h>
-#include <estep/time_integration/time_loop.h>
+#include <estep/base/json_writer.h>
+#include <estep/io/postprocessor.h>
 
 #include <cstdint>
 #include <string>
@@ -25,13 +25,26 @@ namespace estep
    * - the coefficient of restitution from the centre-of-mass kinetic energies
    *   (see restitution()).
    */
-  class ContactMonitor : public RunObserver
+  class ContactMonitor : public Postprocessor
   {
   public:
-    explicit ContactMonitor(const ContactSystem &system);
+    /** The monitor of @p system integrated by @p integrator from (@p q0, @p
+     * v0). */
+    ContactMonitor(const ContactSystem  &system,
+                   const TimeIntegrator &integrator,
+                   const Vector         &q0,
+                   const Vector         &v0);
 
     void
     after_step(const TimeIntegrator &integrator) override;
+
+    /** Adds "contact": summary() from the initial to the current state. */
+    void
+    add_to_summary(JsonObject &summary) const override;
+
+    /** report() from the initial to the current state. */
+    std::string
+    final_report() const override;
 
     /**
      * The coefficient of restitution e of a collision from the state (q0, v0)
@@ -72,10 +85,12 @@ namespace estep
     contact_duration() const;
 
   private:
-    const ContactSystem &system;
-    unsigned int         largest_pair_count     = 0;
-    std::uint64_t        steps_with_pairs       = 0;
-    std::uint64_t        constraint_events_seen = 0;
+    const ContactSystem  &system;
+    const TimeIntegrator &integrator;
+    const Vector          q0, v0;
+    unsigned int          largest_pair_count     = 0;
+    std::uint64_t         steps_with_pairs       = 0;
+    std::uint64_t         constraint_events_seen = 0;
     /** Whether the previous step end was a contact instant. */
     bool          in_contact                = false;
     std::uint64_t n_contact_instants        = 0;

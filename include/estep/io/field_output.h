@@ -1,7 +1,7 @@
 #ifndef estep_io_field_output_h
 #define estep_io_field_output_h
 
-#include <estep/time_integration/time_loop.h>
+#include <estep/io/postprocessor.h>
 
 #include <memory>
 #include <string>
@@ -24,10 +24,10 @@ namespace estep
    * the run goes on, lists only complete files and lags at most a second
    * behind them (rewriting it after every snapshot cost seconds on a slow
    * disk, which ext4 makes flush a file renamed over another). Format "hdf5":
-   * fields/solution-NNNNN.h5 with the time series solution.xdmf (needs MPI to
-   * be initialised, which the estep command does when this format is chosen).
+   * fields/solution-NNNNN.h5 with the time series solution.xdmf (through
+   * MPI, which start() starts if needed).
    */
-  class FieldOutput : public RunObserver
+  class FieldOutput : public Postprocessor
   {
   public:
     enum class Format
@@ -44,13 +44,18 @@ namespace estep
 
     ~FieldOutput() override;
 
+    /** Creates the folder fields/. */
+    void
+    start() override;
+
     /** Writes the snapshots due in (previous_time(), time()], and the start. */
     void
     after_step(const TimeIntegrator &integrator) override;
 
-    /** Brings the time series file up to date (call at the end of a run). */
+    /** Brings the time series file up to date (unless the run failed: its
+     * disk may not take it). */
     void
-    finish();
+    finish(const TimeLoopResult &result) override;
 
     /** Number of snapshots written. */
     unsigned int

@@ -1,7 +1,7 @@
 #ifndef estep_io_history_writer_h
 #define estep_io_history_writer_h
 
-#include <estep/time_integration/time_loop.h>
+#include <estep/io/postprocessor.h>
 
 #include <fstream>
 #include <string>
@@ -18,13 +18,17 @@ namespace estep
    * as they are written, so a run that stops early leaves a valid file; a row
    * that cannot be written (a full disk) throws OutputFailed naming the file.
    */
-  class HistoryWriter : public RunObserver
+  class HistoryWriter : public Postprocessor
   {
   public:
-    /** Opens @p filename and writes the header; @p integrator must be
-     * initialised. Throws std::runtime_error if it cannot. */
+    /** The history of @p integrator (initialised) in @p filename. */
     HistoryWriter(const std::string    &filename,
                   const TimeIntegrator &integrator);
+
+    /** Opens the file and writes the header. Throws std::runtime_error if it
+     * cannot. */
+    void
+    start() override;
 
     void
     observe(const Snapshot &snapshot) override;

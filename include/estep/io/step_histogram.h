@@ -1,7 +1,7 @@
 #ifndef estep_io_step_histogram_h
 #define estep_io_step_histogram_h
 
-#include <estep/time_integration/time_loop.h>
+#include <estep/io/postprocessor.h>
 
 #include <cstdint>
 #include <string>
@@ -12,24 +12,21 @@ namespace estep
   /**
    * The histogram of the time steps a run takes, in logarithmic bins (ten per
    * decade from 1e-15 to 1e5). A step cut short by the end time is not counted.
-   * write() produces step_histogram.csv with the columns lower, upper, count.
+   * step_histogram.csv has the columns lower, upper, count.
    */
-  class StepHistogram : public RunObserver
+  class StepHistogram : public Postprocessor
   {
   public:
-    StepHistogram();
-
-    /** @p end_time: the step ending there is the truncated last one and is left
-     * out. */
-    void
-    set_end_time(const double end_time);
+    /** The histogram of a run ending at @p end_time (the step ending there is
+     * the truncated last one and is left out), written to @p filename. */
+    StepHistogram(const std::string &filename, const double end_time);
 
     void
     after_step(const TimeIntegrator &integrator) override;
 
     /** Write the non-empty range of bins as CSV (atomically). */
     void
-    write(const std::string &filename) const;
+    finish(const TimeLoopResult &result) override;
 
     /** The counts per bin, and the lower edge of bin i: 10^(min_exponent + i /
      * 10). */
@@ -44,9 +41,9 @@ namespace estep
     static constexpr int max_exponent    = 5;
 
   private:
+    std::string                filename;
+    double                     end_time;
     std::vector<std::uint64_t> bins;
-    double                     end_time = 0.;
-    bool                       has_end  = false;
   };
 } // namespace estep
 

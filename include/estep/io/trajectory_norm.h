@@ -1,7 +1,7 @@
 #ifndef estep_io_trajectory_norm_h
 #define estep_io_trajectory_norm_h
 
-#include <estep/time_integration/time_loop.h>
+#include <estep/io/postprocessor.h>
 
 namespace estep
 {
@@ -12,11 +12,15 @@ namespace estep
    * output: exact for energy-stepping (q linear, q' constant on each step),
    * fifth order for the cubic Hermite output of Newmark.
    */
-  class TrajectoryNorm : public RunObserver
+  class TrajectoryNorm : public Postprocessor
   {
   public:
     void
     after_step(const TimeIntegrator &integrator) override;
+
+    /** Adds "h1 norm". */
+    void
+    add_to_summary(JsonObject &summary) const override;
 
     /** The H1 norm accumulated so far. */
     double

@@ -85,6 +85,18 @@ namespace estep
     virtual Interval
     volumetric_second_derivative_range(const Interval &J) const;
 
+    /**
+     * The Lame constants of the material linearised about the reference state:
+     * lambda = f''(1) - c and mu = c (from P = f'(J) J F^-T + c F with f'(1) =
+     * -c, which makes the reference state stress-free).
+     */
+    double
+    small_strain_lambda() const;
+
+    /** See small_strain_lambda(). */
+    double
+    small_strain_mu() const;
+
     /** W_0 = f(1) + 3c/2, the energy density of the undeformed state that is
      * subtracted. */
     double

@@ -55,10 +55,7 @@ namespace estep
  * MaterialFactory). A material's source file ends with this.
  */
 #define ESTEP_REGISTER_MATERIAL(name, description, declare, create) \
-  ESTEP_REGISTER_PLUGIN(::estep::material_registry(),               \
-                        name,                                       \
-                        description,                                \
-                        declare,                                    \
-                        create)
+  ESTEP_REGISTER_PLUGIN(                                            \
+    ::estep::material_registry(), name, description, declare, create)
 
 #endif

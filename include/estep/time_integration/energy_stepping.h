@@ -63,6 +63,15 @@ namespace estep
     std::vector<Counter>
     counters() const override;
 
+    /** Energy step, terrace offset, and the terraced energy at the start and
+     * the end with its drift. */
+    void
+    add_energies_to_summary(JsonObject &energies) const override;
+
+    /** A warning when h exceeds the initial |T| + |V|. */
+    std::vector<std::string>
+    warnings() const override;
+
     /** The current terrace index L ((L + c) h <= V < (L + 1 + c) h up to the
      * root tolerance). */
     long long
@@ -111,10 +120,12 @@ namespace estep
 
     const double h;
     const double c;
-    double       E_h0        = 0.;
-    long long    level       = 0;
-    Departure    departure   = Departure::interior;
-    double       last_flight = 0.;
+    double       E_h0 = 0.;
+    /** |T| + |V| at the start: the scale of the energies. */
+    double    energy_scale = 0.;
+    long long level        = 0;
+    Departure departure    = Departure::interior;
+    double    last_flight  = 0.;
 
     // The last flight: it started at (t_previous, q_start) with velocity
     // v_flight on level level_flight.

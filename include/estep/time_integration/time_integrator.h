@@ -1,6 +1,7 @@
 #ifndef estep_time_integration_time_integrator_h
 #define estep_time_integration_time_integrator_h
 
+#include <estep/base/json_writer.h>
 #include <estep/systems/mechanical_system.h>
 
 #include <cstdint>
@@ -64,6 +65,22 @@ namespace estep
     /** Work counters, in a fixed order. */
     virtual std::vector<Counter>
     counters() const = 0;
+
+    /**
+     * Add the integrator's own figures to the summary's `energies` object
+     * (energy-stepping: its energy step and terraced energies). The default
+     * adds nothing.
+     */
+    virtual void
+    add_energies_to_summary(JsonObject &energies) const;
+
+    /**
+     * Warnings about the run as initialised (e.g. an energy step coarser than
+     * the system's energy scale), one sentence each, for the application to
+     * print. The default has none.
+     */
+    virtual std::vector<std::string>
+    warnings() const;
 
     double
     time() const
@@ -140,6 +157,13 @@ namespace estep
     double                  smallest_step = 0.;
     double                  largest_step  = 0.;
   };
+
+  /**
+   * |b - a| relative to |a|, or absolute where a is zero on the scale @p scale
+   * (|a| <= 1e-14 scale): the drift of a conserved quantity from @p a to @p b.
+   */
+  double
+  relative_drift(const double a, const double b, const double scale);
 
   /** Thrown when a run becomes unstable (non-finite or exploding state). */
   class UnstableRun : public std::runtime_error

@@ -4,11 +4,11 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
-#include <estep/app/elastic_body_problem.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>
-#include <estep/materials/neo_hookean.h>
+#include <estep/materials/material_registry.h>
+#include <estep/problems/problem.h>
 
 #include <iostream>
 #include <sstream>
@@ -16,28 +16,25 @@
 
 namespace estep
 {
-  namespace ElasticBodyProblem
+  namespace
   {
-    namespace
+    std::array<double, 3>
+    parse_point(const std::string &text, const std::string &entry)
     {
-      std::array<double, 3>
-      parse_point(const std::string &text, const std::string &entry)
-      {
-        const std::vector<std::string> parts =
-          dealii::Utilities::split_string_list(text, ',');
-        if (parts.size() != 3)
-          throw std::runtime_error("Elastic body/" + entry + ": <" + text +
-                                   "> is not three comma-separated numbers.");
-        return {{dealii::Utilities::string_to_double(parts[0]),
-                 dealii::Utilities::string_to_double(parts[1]),
-                 dealii::Utilities::string_to_double(parts[2])}};
-      }
-    } // namespace
+      const std::vector<std::string> parts =
+        dealii::Utilities::split_string_list(text, ',');
+      if (parts.size() != 3)
+        throw std::runtime_error("Elastic body/" + entry + ": <" + text +
+                                 "> is not three comma-separated numbers.");
+      return {{dealii::Utilities::string_to_double(parts[0]),
+               dealii::Utilities::string_to_double(parts[1]),
+               dealii::Utilities::string_to_double(parts[2])}};
+    }
 
 
 
     void
-    declare_parameters(dealii::ParameterHandler &prm)
+    declare_elastic_body_parameters(dealii::ParameterHandler &prm)
     {
       using dealii::Patterns::Anything;
       using dealii::Patterns::Double;
@@ -52,30 +49,6 @@ namespace estep
         MeshDescription::declare_parameters(prm);
         prm.leave_subsection();
 
-        prm.enter_subsection("Material");
-        {
-          prm.declare_entry(
-            "Model",
-            "neo-Hookean",
-            Selection("neo-Hookean"),
-            "Strain energy W(F) = lambda0/2 (log J)^2 - mu0 log J + mu0/2 "
-            "tr(F^T F), relative to W(I).");
-          prm.declare_entry("Lambda",
-                            "0.0100",
-                            Double(0., max),
-                            "Lame constant lambda0 (stress units).");
-          prm.declare_entry(
-            "Mu",
-            "0.0066",
-            Double(0., max),
-            "Shear modulus mu0 (stress units); must be positive.");
-          prm.declare_entry(
-            "Density",
-            "0.100",
-            Double(0., max),
-            "Mass density rho per unit reference volume; must be positive.");
-        }
-        prm.leave_subsection();
 
         prm.enter_subsection("Initial velocity");
         {
@@ -127,7 +100,7 @@ namespace estep
 
 
     Problem
-    create(dealii::ParameterHandler &prm)
+    create_elastic_body_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Elastic body");
 
@@ -136,24 +109,19 @@ namespace estep
       mesh.parse_parameters(prm);
       prm.leave_subsection();
 
-      prm.enter_subsection("Material");
-      const double lambda  = prm.get_double("Lambda");
-      const double mu      = prm.get_double("Mu");
-      const double density = prm.get_double("Density");
       prm.leave_subsection();
-      if (!(mu > 0.))
-        throw std::runtime_error("Elastic body/Material/Mu: must be positive.");
-      if (!(density > 0.))
-        throw std::runtime_error(
-          "Elastic body/Material/Density: must be positive.");
+      prm.enter_subsection("Material");
+      const MaterialChoice material =
+        parse_material_parameters(prm, "Material");
+      prm.leave_subsection();
+      prm.enter_subsection("Elastic body");
 
       dealii::Triangulation<3> tria;
       make_mesh(mesh, tria);
-      auto body = std::make_unique<ElasticBodyWithHessian>(
-        tria,
-        std::make_shared<NeoHookean>(lambda, mu),
-        density,
-        "elastic body");
+      auto body = std::make_unique<ElasticBodyWithHessian>(tria,
+                                                           material.material,
+                                                           material.density,
+                                                           "elastic body");
       body->track_point("tracked",
                         parse_point(prm.get("Tracked point"), "Tracked point"));
 
@@ -230,12 +198,17 @@ namespace estep
         .add("volume", body->volume())
         .add("mass", body->mass())
         .add("mesh", mesh.type)
-        .add("material", "neo-Hookean")
-        .add("lambda0", lambda)
-        .add("mu0", mu)
-        .add("density", density);
+        .add("material", material.material->name())
+        .add("density", material.density);
       problem.system = std::move(body);
       return problem;
     }
-  } // namespace ElasticBodyProblem
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_PROBLEM(
+  "elastic body",
+  "One elastic body (subsection Elastic body): a mesh, a material (subsection "
+  "Material), an initial velocity and a tracked point.",
+  estep::declare_elastic_body_parameters,
+  estep::create_elastic_body_problem)

@@ -1,10 +1,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
-#include <estep/app/colliding_balls_problem.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/elastic_body.h>
-#include <estep/materials/neo_hookean.h>
+#include <estep/materials/material_registry.h>
+#include <estep/problems/problem.h>
 #include <estep/systems/contact_parameters.h>
 #include <estep/systems/contact_system.h>
 
@@ -13,10 +13,10 @@
 
 namespace estep
 {
-  namespace CollidingBallsProblem
+  namespace
   {
     void
-    declare_parameters(dealii::ParameterHandler &prm)
+    declare_colliding_balls_parameters(dealii::ParameterHandler &prm)
     {
       using dealii::Patterns::Double;
       const double max = Double::max_double_value;
@@ -55,18 +55,6 @@ namespace estep
           Double(-max, max),
           "Angular velocity of ball 2 about the y axis, perpendicular to "
           "the line of centres.");
-        prm.declare_entry("Lambda",
-                          "1.154e8",
-                          Double(0., max),
-                          "Lame constant lambda0.");
-        prm.declare_entry("Mu",
-                          "7.96e7",
-                          Double(0., max),
-                          "Shear modulus mu0 (positive).");
-        prm.declare_entry("Density",
-                          "7800",
-                          Double(0., max),
-                          "Mass density (positive).");
       }
       prm.leave_subsection();
       ContactParameters::declare_parameters(prm);
@@ -75,28 +63,27 @@ namespace estep
 
 
     Problem
-    create(dealii::ParameterHandler &prm)
+    create_colliding_balls_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Colliding balls");
-      const double R       = prm.get_double("Radius");
-      const double ratio   = prm.get_double("Size ratio");
-      const double size    = prm.get_double("Mesh size");
-      const double gap     = prm.get_double("Gap");
-      const double speed   = prm.get_double("Speed");
-      const double spin    = prm.get_double("Spin");
-      const double lambda  = prm.get_double("Lambda");
-      const double mu      = prm.get_double("Mu");
-      const double density = prm.get_double("Density");
+      const double R     = prm.get_double("Radius");
+      const double ratio = prm.get_double("Size ratio");
+      const double size  = prm.get_double("Mesh size");
+      const double gap   = prm.get_double("Gap");
+      const double speed = prm.get_double("Speed");
+      const double spin  = prm.get_double("Spin");
       prm.leave_subsection();
-      if (!(R > 0.) || !(ratio > 0.) || !(size > 0.) || !(mu > 0.) ||
-          !(density > 0.))
-        throw std::runtime_error(
-          "Colliding balls: the radius, size ratio, mesh size, Mu and Density "
-          "must be positive.");
+      if (!(R > 0.) || !(ratio > 0.) || !(size > 0.))
+        throw std::runtime_error("Colliding balls: the radius, size ratio and "
+                                 "mesh size must be positive.");
+      prm.enter_subsection("Material");
+      const MaterialChoice choice = parse_material_parameters(prm, "Material");
+      prm.leave_subsection();
+      const double      density = choice.density;
       ContactParameters contact;
       contact.parse_parameters(prm);
 
-      const auto material = std::make_shared<NeoHookean>(lambda, mu);
+      const auto                 &material = choice.material;
       const std::array<double, 3> centre_1 = {{0., 0., 0.}},
                                   centre_2 = {{(1. + ratio) * R + gap, 0., 0.}};
       std::vector<std::shared_ptr<const ElasticBody>> bodies;
@@ -123,8 +110,10 @@ namespace estep
       // Hertz's estimate of the contact duration of two equal elastic spheres
       // meeting head-on at relative speed v0 (method.md 5.3, as the seed
       // writes it).
-      const double E  = mu * (3. * lambda + 2. * mu) / (lambda + mu);
-      const double nu = lambda / (2. * (lambda + mu));
+      const double lambda = choice.material->small_strain_lambda();
+      const double mu     = choice.material->small_strain_mu();
+      const double E      = mu * (3. * lambda + 2. * mu) / (lambda + mu);
+      const double nu     = lambda / (2. * (lambda + mu));
       const double hertz =
         4.53 *
         std::pow((1. - nu * nu) / E * 4. / 3. * R * R * R * density, 0.4) *
@@ -148,5 +137,13 @@ namespace estep
       problem.system = std::move(system);
       return problem;
     }
-  } // namespace CollidingBallsProblem
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_PROBLEM(
+  "colliding balls",
+  "Two elastic balls (subsection Colliding balls, material in the subsection "
+  "Material) meeting with a relative speed and a spin, in contact (subsection "
+  "Contact).",
+  estep::declare_colliding_balls_parameters,
+  estep::create_colliding_balls_problem)

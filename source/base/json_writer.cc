@@ -1,4 +1,4 @@
-#include <estep/io/json_writer.h>
+#include <estep/base/json_writer.h>
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
-#include <estep/app/argon_cluster_problem.h>
+#include <estep/problems/problem.h>
 #include <estep/systems/lennard_jones_cluster.h>
 
 #include <cmath>
@@ -9,39 +9,36 @@
 
 namespace estep
 {
-  namespace ArgonClusterProblem
+  namespace
   {
-    namespace
-    {
-      constexpr double boltzmann_constant = 1.380649e-23; // J/K
+    constexpr double boltzmann_constant = 1.380649e-23; // J/K
 
-      /** Parse "x, y; x, y; ..." into points of @p dim coordinates. */
-      std::vector<double>
-      parse_points(const std::string &text,
-                   const unsigned int dim,
-                   const std::string &entry)
-      {
-        std::vector<double> values;
-        for (const std::string &point :
-             dealii::Utilities::split_string_list(text, ';'))
-          {
-            const std::vector<std::string> coordinates =
-              dealii::Utilities::split_string_list(point, ',');
-            if (coordinates.size() != dim)
-              throw std::runtime_error(
-                "Argon cluster/" + entry + ": the point <" + point +
-                "> does not have " + std::to_string(dim) + " coordinates.");
-            for (const std::string &x : coordinates)
-              values.push_back(dealii::Utilities::string_to_double(x));
-          }
-        return values;
-      }
-    } // namespace
+    /** Parse "x, y; x, y; ..." into points of @p dim coordinates. */
+    std::vector<double>
+    parse_points(const std::string &text,
+                 const unsigned int dim,
+                 const std::string &entry)
+    {
+      std::vector<double> values;
+      for (const std::string &point :
+           dealii::Utilities::split_string_list(text, ';'))
+        {
+          const std::vector<std::string> coordinates =
+            dealii::Utilities::split_string_list(point, ',');
+          if (coordinates.size() != dim)
+            throw std::runtime_error(
+              "Argon cluster/" + entry + ": the point <" + point +
+              "> does not have " + std::to_string(dim) + " coordinates.");
+          for (const std::string &x : coordinates)
+            values.push_back(dealii::Utilities::string_to_double(x));
+        }
+      return values;
+    }
 
 
 
     void
-    declare_parameters(dealii::ParameterHandler &prm)
+    declare_argon_cluster_parameters(dealii::ParameterHandler &prm)
     {
       using dealii::Patterns::Double;
       using dealii::Patterns::Integer;
@@ -86,7 +83,7 @@ namespace estep
 
 
     Problem
-    create(dealii::ParameterHandler &prm)
+    create_argon_cluster_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Argon cluster");
       const unsigned int dim  = prm.get_integer("Dimension");
@@ -129,5 +126,13 @@ namespace estep
         .add("tau [s]", tau);
       return problem;
     }
-  } // namespace ArgonClusterProblem
+  } // namespace
 } // namespace estep
+
+ESTEP_REGISTER_PROBLEM(
+  "argon cluster",
+  "Atoms of argon interacting by the Lennard-Jones potential in reduced units "
+  "(subsection Argon cluster); the reference text's frozen cluster of seven "
+  "atoms by default.",
+  estep::declare_argon_cluster_parameters,
+  estep::create_argon_cluster_problem)

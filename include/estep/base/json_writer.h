@@ -1,5 +1,5 @@
-#ifndef estep_io_json_writer_h
-#define estep_io_json_writer_h
+#ifndef estep_base_json_writer_h
+#define estep_base_json_writer_h
 
 #include <cstdint>
 #include <string>

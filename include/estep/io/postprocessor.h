@@ -1,0 +1,98 @@
+#ifndef estep_io_postprocessor_h
+#define estep_io_postprocessor_h
+
+#include <estep/base/json_writer.h>
+#include <estep/base/plugin_registry.h>
+#include <estep/time_integration/time_loop.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  /**
+   * What a run writes besides its summary: a history, field snapshots, a
+   * progress log, contact statistics, ... A postprocessor watches the run (a
+   * RunObserver) and goes through four stages: it is created while the input
+   * is checked (it may refuse a system it cannot serve, and must not touch the
+   * disk yet); start() opens its files once the output directory is ready;
+   * the time loop shows it the run; finish() closes it, and add_to_summary()
+   * and final_report() say what it found.
+   */
+  class Postprocessor : public RunObserver
+  {
+  public:
+    /** Open the outputs. Throws std::runtime_error when one cannot be opened
+     * (the run then fails). The default does nothing. */
+    virtual void
+    start();
+
+    /** The run has ended as @p result says: write what is written at the end.
+     * The default does nothing. */
+    virtual void
+    finish(const TimeLoopResult &result);
+
+    /** Add this postprocessor's figures to summary.json. The default adds
+     * nothing. */
+    virtual void
+    add_to_summary(JsonObject &summary) const;
+
+    /** A line for the terminal at the end of the run, or "" (the default). */
+    virtual std::string
+    final_report() const;
+  };
+
+  /** What a postprocessor may know of its run. */
+  struct PostprocessorContext
+  {
+    /** The initialised integrator (and through it the system). */
+    const TimeIntegrator &integrator;
+    /** The initial state. */
+    const Vector &q0, &v0;
+    /** Where the run writes (it exists once start() is called). */
+    std::string output_directory;
+    double      start_time, end_time;
+  };
+
+  /**
+   * The create function of a postprocessor plugin: reads its parameters
+   * (declared by its declare_parameters in the subsection `Postprocessors`,
+   * @p prm in that subsection). Throws std::runtime_error naming the entry on
+   * bad input or a system it cannot serve; returns nullptr for a system it has
+   * nothing to watch in, when its description says so.
+   */
+  using PostprocessorFactory =
+    std::unique_ptr<Postprocessor>(dealii::ParameterHandler &,
+                                   const PostprocessorContext &);
+
+  /** The registered postprocessors. */
+  PluginRegistry<PostprocessorFactory> &
+  postprocessor_registry();
+
+  /**
+   * Declare, in the current subsection (`Postprocessors`), `List` and every
+   * postprocessor's own parameters.
+   */
+  void
+  declare_postprocessor_parameters(dealii::ParameterHandler &prm);
+
+  /** The postprocessors named in `List`, in its order. */
+  std::vector<std::unique_ptr<Postprocessor>>
+  create_postprocessors(dealii::ParameterHandler   &prm,
+                        const PostprocessorContext &context);
+} // namespace estep
+
+/**
+ * Register a postprocessor: its name (an item of `Postprocessors/List`), a
+ * description, the function declaring its parameters and its create function
+ * (a PostprocessorFactory). A postprocessor's source file ends with this.
+ */
+#define ESTEP_REGISTER_POSTPROCESSOR(name, description, declare, create) \
+  ESTEP_REGISTER_PLUGIN(::estep::postprocessor_registry(),               \
+                        name,                                            \
+                        description,                                     \
+                        declare,                                         \
+                        create)
+
+#endif

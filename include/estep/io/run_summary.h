@@ -1,0 +1,43 @@
+#ifndef estep_io_run_summary_h
+#define estep_io_run_summary_h
+
+#include <estep/base/json_writer.h>
+#include <estep/io/postprocessor.h>
+#include <estep/problems/problem.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace estep
+{
+  /** The parts of a run that its summary describes. */
+  struct RunRecord
+  {
+    const Problem                                     &problem;
+    const TimeIntegrator                              &integrator;
+    const std::vector<std::unique_ptr<Postprocessor>> &postprocessors;
+    double                                             start_time, end_time;
+  };
+
+  /**
+   * The short summary of a run that has not run to an end: estep's version,
+   * @p status ("running", or "failed" when its outputs could not be opened),
+   * @p message, the system, the method and the time span.
+   */
+  JsonObject
+  status_summary(const RunRecord   &run,
+                 const std::string &status,
+                 const std::string &message);
+
+  /**
+   * The summary of a run that ended as @p result says: status_summary() and
+   * the problem's description, the counts of work and steps, the energies
+   * and momenta at the start and the end with their drifts, the integrator's
+   * own figures and every postprocessor's.
+   */
+  JsonObject
+  run_summary(const RunRecord &run, const TimeLoopResult &result);
+} // namespace estep
+
+#endif

@@ -1,0 +1,60 @@
+#ifndef estep_problems_problem_h
+#define estep_problems_problem_h
+
+#include <estep/base/json_writer.h>
+#include <estep/base/plugin_registry.h>
+#include <estep/systems/mechanical_system.h>
+
+#include <memory>
+#include <string>
+
+namespace estep
+{
+  /**
+   * A mechanical system with its initial state, as a parameter file describes
+   * it: what a problem plugin creates.
+   */
+  struct Problem
+  {
+    std::unique_ptr<MechanicalSystem> system;
+    Vector                            q0, v0;
+    /** What the summary should say about the problem (units, counts, ...). */
+    JsonObject description;
+  };
+
+  /**
+   * The create function of a problem plugin: reads the problem's parameters
+   * (declared by its declare_parameters at the top level of the file) and
+   * builds the system and its initial state. Throws std::runtime_error naming
+   * the entry on bad input.
+   */
+  using ProblemFactory = Problem(dealii::ParameterHandler &);
+
+  /** The registered problems. */
+  PluginRegistry<ProblemFactory> &
+  problem_registry();
+
+  /**
+   * Declare `Problem/System` (a Selection of the registered problems), the
+   * subsection `Material` that problems with elastic bodies read (see
+   * declare_material_parameters()), and every registered problem's own
+   * parameters.
+   */
+  void
+  declare_problem_parameters(dealii::ParameterHandler &prm);
+
+  /** Build the problem chosen in `Problem/System`. */
+  Problem
+  create_problem(dealii::ParameterHandler &prm);
+} // namespace estep
+
+/**
+ * Register a problem: its name (the value of `Problem/System`), a
+ * description, the function declaring its parameters and its create function
+ * (a ProblemFactory). A problem's source file ends with this.
+ */
+#define ESTEP_REGISTER_PROBLEM(name, description, declare, create) \
+  ESTEP_REGISTER_PLUGIN(                                           \
+    ::estep::problem_registry(), name, description, declare, create)
+
+#endif

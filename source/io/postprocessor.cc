@@ -1,0 +1,83 @@
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/io/postprocessor.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace estep
+{
+  void
+  Postprocessor::start()
+  {}
+
+
+
+  void
+  Postprocessor::finish(const TimeLoopResult &)
+  {}
+
+
+
+  void
+  Postprocessor::add_to_summary(JsonObject &) const
+  {}
+
+
+
+  std::string
+  Postprocessor::final_report() const
+  {
+    return "";
+  }
+
+
+
+  PluginRegistry<PostprocessorFactory> &
+  postprocessor_registry()
+  {
+    static PluginRegistry<PostprocessorFactory> registry("postprocessor");
+    return registry;
+  }
+
+
+
+  void
+  declare_postprocessor_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry(
+      "List",
+      "history, step histogram, progress, contact monitor",
+      dealii::Patterns::MultipleSelection(postprocessor_registry().names()),
+      "The postprocessors of the run, separated by commas; each reads its "
+      "own subsection:" +
+        postprocessor_registry().descriptions());
+    postprocessor_registry().declare_parameters(prm);
+  }
+
+
+
+  std::vector<std::unique_ptr<Postprocessor>>
+  create_postprocessors(dealii::ParameterHandler   &prm,
+                        const PostprocessorContext &context)
+  {
+    std::vector<std::string> names;
+    std::vector<std::unique_ptr<Postprocessor>> postprocessors;
+    for (const std::string &name :
+         dealii::Utilities::split_string_list(prm.get("List"), ','))
+      {
+        if (std::find(names.begin(), names.end(), name) != names.end())
+          throw std::runtime_error("Postprocessors/List: <" + name +
+                                   "> is listed twice.");
+        names.push_back(name);
+        auto postprocessor =
+          postprocessor_registry()
+            .get(name, "Postprocessors/List")
+            .create(prm, context);
+        if (postprocessor)
+          postprocessors.push_back(std::move(postprocessor));
+      }
+    return postprocessors;
+  }
+} // namespace estep

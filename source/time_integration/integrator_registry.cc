@@ -1,0 +1,39 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <estep/time_integration/integrator_registry.h>
+
+namespace estep
+{
+  PluginRegistry<IntegratorFactory> &
+  integrator_registry()
+  {
+    static PluginRegistry<IntegratorFactory> registry("time integrator");
+    return registry;
+  }
+
+
+
+  void
+  declare_integrator_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry(
+      "Method",
+      "energy stepping",
+      dealii::Patterns::Selection(integrator_registry().names()),
+      "The time integrator, one of the registered integrators; each reads "
+      "its own subsection:" +
+        integrator_registry().descriptions());
+    integrator_registry().declare_parameters(prm);
+  }
+
+
+
+  std::unique_ptr<TimeIntegrator>
+  create_integrator(dealii::ParameterHandler &prm,
+                    const MechanicalSystem   &system)
+  {
+    return integrator_registry()
+      .get(prm.get("Method"), "Time integration/Method")
+      .create(prm, system);
+  }
+} // namespace estep
