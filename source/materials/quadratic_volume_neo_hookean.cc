@@ -76,6 +76,21 @@ namespace estep
     J_star = lambda0 > 0. ? 0.5 * (1. + std::sqrt(1. + 4. * (mu0 / lambda0))) :
                             infinity;
     f_min  = std::isfinite(J_star) ? energy(lambda0, mu0, J_star) : -infinity;
+    // Below every computed f(x): for x < 1 energy() returns values >= 0 >=
+    // f_min; for x >= 1 it returns at least (1 - 3 u) lambda/2 (x - 1)^2 -
+    // (1 + 3 u) mu log x, a function of the form of f with mu larger by a
+    // factor 1 + 7 u, whose minimum (near J*) lies at most 7 u mu log(2 J*)
+    // below the exact minimum, which f_min exceeds by at most 3 u
+    // energy_magnitude(J*) plus the error of J* (see
+    // volumetric_energy_range()).
+    global_lower =
+      std::isfinite(f_min) ?
+        f_min -
+          16. * unit *
+            (energy_magnitude(lambda0, mu0, J_star) +
+             mu0 * std::log(2. * J_star)) -
+          8. * (lambda0 + mu0) * (unit * J_star) * (unit * J_star) - tiny :
+        -infinity;
   }
 
   std::string
@@ -150,9 +165,10 @@ namespace estep
         extra = 8. * (lambda0 + mu0) * (unit * J_star) * (unit * J_star);
       }
     const double margin = 16. * unit * magnitude + extra + tiny;
-    // Overflow ((J - 1)^2 beyond the largest double): no finite bounds.
+    // Overflow ((J - 1)^2 beyond the largest double, J.upper > 1e153): only
+    // the bound below every value of f.
     if (!std::isfinite(margin))
-      return {-infinity, infinity};
+      return {global_lower, infinity};
     return {lower - margin, upper + margin};
   }
 

@@ -450,6 +450,20 @@ namespace
         }
     const Interval inverted = material.volumetric_energy_range({-2., -1.});
     EXPECT_EQ(inverted.lower, infinity);
+
+    // f overflows beyond J = 1e153: the lower bound is then one below every
+    // value of f, finite.
+    for (const auto &[a, b] :
+         {std::pair{1e200, 1e300}, std::pair{0.5, 1e300}, std::pair{0., 1e300}})
+      {
+        const Interval f = material.volumetric_energy_range({a, b});
+        EXPECT_TRUE(std::isfinite(f.lower));
+        EXPECT_LE(f.lower, f_min);
+        EXPECT_GT(f.lower, f_min - 1e-14);
+        EXPECT_EQ(f.upper, infinity);
+        if (a > 0.)
+          check_ranges(a, b);
+      }
   }
 
   TEST(QuadraticVolumeNeoHookean, BatchKernelsMatchScalarPath)

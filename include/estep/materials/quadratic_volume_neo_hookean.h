@@ -83,20 +83,22 @@ namespace estep
     /**
      * The range of f over @p J: f at the ends, and f(J*) when the minimiser J*
      * lies inside, widened by the round-off of volumetric_energy(). The upper
-     * bound is +infinity when J.lower <= 0; the result is (+infinity,
-     * +infinity) when J.upper <= 0.
+     * bound is +infinity when J.lower <= 0 or when f overflows (J.upper >
+     * 1e153; the lower bound is then one that holds for every J); the result
+     * is (+infinity, +infinity) when J.upper <= 0.
      */
     Interval
     volumetric_energy_range(const Interval &J) const override;
 
     /** [f'(J.lower), f'(J.upper)] (f' increases), widened by the round-off of
-     * volumetric_derivative(); (-infinity, infinity) when J.lower <= 0. */
+     * volumetric_derivative(); (-infinity, infinity) when J.lower <= 0 or
+     * when f' overflows. */
     Interval
     volumetric_derivative_range(const Interval &J) const override;
 
     /** [f''(J.upper), f''(J.lower)] (f'' decreases), widened by the round-off
      * of volumetric_second_derivative(); (-infinity, infinity) when J.lower
-     * <= 0. */
+     * <= 0, and unbounded above when J.lower^2 underflows. */
     Interval
     volumetric_second_derivative_range(const Interval &J) const override;
 
@@ -127,6 +129,9 @@ namespace estep
     /** f(J_star) as volumetric_energy() computes it (-infinity if J_star is
      * infinite). */
     double f_min;
+    /** A lower bound of every value volumetric_energy() returns (-infinity if
+     * f_min is). */
+    double global_lower;
   };
 } // namespace estep
 
