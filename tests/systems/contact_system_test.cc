@@ -285,40 +285,6 @@ TEST(ContactSystem, PenaltyEnclosuresTighten)
   std::cout << std::endl;
 }
 
-TEST(LineTaylorForm, QuadraticAndKink)
-{
-  // f(s) = s^2 on [0, 1]: exact range from the form about 0.5.
-  estep::LineTaylorForm square = estep::LineTaylorForm::about_centre_of(0., 1.);
-  square.value                 = 0.25;
-  square.slope                 = 1.;
-  square.curvature             = {2., 2.};
-  const auto e                 = square.enclosure();
-  // (up to the outward rounding of a few units of round-off)
-  EXPECT_NEAR(e.value.lower, 0., 1e-14);
-  EXPECT_NEAR(e.value.upper, 1., 1e-14);
-  EXPECT_NEAR(e.derivative.lower, 0., 1e-14);
-  EXPECT_NEAR(e.derivative.upper, 2., 1e-14);
-
-  // f(s) = |s - 0.3| + s^2 (a kink: f' jumps by 2): W = [-2, 0] about 0.5.
-  estep::LineTaylorForm kink = estep::LineTaylorForm::about_centre_of(0., 1.);
-  kink.value                 = 0.2 + 0.25;
-  kink.slope                 = 1. + 1.;
-  kink.slope_offset          = {-2., 0.};
-  estep::LineTaylorForm sum  = estep::LineTaylorForm::about_centre_of(0., 1.);
-  sum += kink;
-  sum.curvature = {2., 2.};
-  const auto k  = sum.enclosure();
-  for (unsigned int j = 0; j <= 100; ++j)
-    {
-      const double s = j / 100.;
-      EXPECT_TRUE(k.value.contains(std::abs(s - 0.3) + s * s));
-      EXPECT_TRUE(k.derivative.contains((s < 0.3 ? -1. : 1.) + 2. * s));
-    }
-  // Forms about different intervals do not add.
-  EXPECT_THROW(sum += estep::LineTaylorForm::about_centre_of(0., 2.),
-               std::logic_error);
-}
-
 // Random pairs of triangles moving on straight lines (generic, nearly
 // parallel, a vertex sliding in the other plane, far from the origin) on
 // intervals of widths 1e-8 ... 1 about times near their contact: the
