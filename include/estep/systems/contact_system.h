@@ -87,7 +87,10 @@ namespace estep
      * PenaltyFlight. Enclosures: one second-order form of the sum about the
      * interval's centre (values and slopes of the parts added at the centre,
      * then the intervals; see LineTaylorForm), intersected with the sum of
-     * the parts' enclosures. value_tolerance(): the sum of the parts'.
+     * the parts' enclosures; with the sum of the parts' bounds on V'' (where
+     * every part has one: the bodies', the penalty's without a kink) and V,
+     * V' at the interval's centre as the sample. value_tolerance(): the sum
+     * of the parts'.
      */
     std::unique_ptr<FreeFlight>
     free_flight(const Vector &q, const Vector &v) const override;
