@@ -217,6 +217,7 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
   std::mt19937_64                        rng(5);
   std::uniform_real_distribution<double> u(0., 1.);
   unsigned int                           n_samples = 0, n_failures = 0;
+  unsigned int                           n_curved = 0, n_curvature_samples = 0;
   for (unsigned int flight_number = 0; flight_number < 4; ++flight_number)
     {
       // Random deformation velocities plus an approach of the two balls.
@@ -231,10 +232,36 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
           const double a     = (limit - width) * u(rng);
           const double b     = a + width;
           const auto   e     = flight->enclose(a, b);
+          // The centre sample is what value_and_derivative() computes there.
+          ASSERT_TRUE(e.sample_point >= a && e.sample_point <= b);
+          const auto at_sample = flight->value_and_derivative(e.sample_point);
+          EXPECT_EQ(e.sample.value, at_sample.value);
+          EXPECT_EQ(e.sample.derivative, at_sample.derivative);
+          const bool curved = std::isfinite(e.curvature.lower) &&
+                              std::isfinite(e.curvature.upper);
+          n_curved += curved;
           for (unsigned int j = 0; j <= 20; ++j)
             {
               const double s  = a + (b - a) * j / 20.;
               const auto   lv = flight->value_and_derivative(s);
+              // V'' by central differences of V' inside the curvature bound.
+              const double delta = 1e-3 * (b - a);
+              if (curved && s - delta >= a && s + delta <= b)
+                {
+                  const double curvature =
+                    (flight->value_and_derivative(s + delta).derivative -
+                     flight->value_and_derivative(s - delta).derivative) /
+                    (2. * delta);
+                  const double slack =
+                    1e-6 * (std::abs(e.curvature.lower) +
+                            std::abs(e.curvature.upper)) +
+                    1e-12 * (std::abs(lv.derivative) + 1.) / delta;
+                  ++n_curvature_samples;
+                  EXPECT_GE(curvature, e.curvature.lower - slack)
+                    << "[" << a << ", " << b << "] s = " << s;
+                  EXPECT_LE(curvature, e.curvature.upper + slack)
+                    << "[" << a << ", " << b << "] s = " << s;
+                }
               ++n_samples;
               if (!e.value.contains(lv.value) ||
                   !e.derivative.contains(lv.derivative))
@@ -251,8 +278,11 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
         }
     }
   std::cout << n_samples << " samples, " << n_failures
-            << " outside their enclosures" << std::endl;
+            << " outside their enclosures; " << n_curved
+            << " enclosures of 100 bound V'' (" << n_curvature_samples
+            << " difference quotients checked)" << std::endl;
   EXPECT_EQ(n_failures, 0u);
+  EXPECT_GT(n_curved, 0u);
 }
 
 TEST(ContactSystem, PenaltyEnclosuresTighten)
