@@ -513,20 +513,15 @@ namespace estep
     bvh.build(q.data(), q.size());
     std::vector<std::pair<unsigned int, unsigned int>> pairs;
     bvh.find_pairs(pairs);
-    unsigned int       count = 0;
-    contact::Triangle3 T[2];
+    unsigned int count = 0;
     for (const auto &[i, j] : pairs)
       {
         if (!exclusion_groups.empty() &&
             exclusion_groups[i] == exclusion_groups[j])
           continue;
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              T[0][k][d] = q[3 * triangles[i][k] + d];
-              T[1][k][d] = q[3 * triangles[j][k] + d];
-            }
-        if (contact::triangles_intersect(T[0], T[1]))
+        if (contact::triangles_intersect(
+              contact::triangle_at(q.data(), triangles[i]),
+              contact::triangle_at(q.data(), triangles[j])))
           ++count;
       }
     return count;
