@@ -10,6 +10,7 @@
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
+#include <estep/composite/contact_system.h>
 #include <estep/contact/ccd_command.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/implicit/create_implicit_integrator.h>
@@ -21,7 +22,6 @@
 #include <estep/io/progress_log.h>
 #include <estep/io/step_histogram.h>
 #include <estep/io/trajectory_norm.h>
-#include <estep/systems/contact_system.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/explicit_newmark.h>
 #include <estep/time_integration/time_loop.h>

@@ -2,11 +2,11 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/app/colliding_balls_problem.h>
+#include <estep/composite/contact_parameters.h>
+#include <estep/composite/contact_system.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/materials/neo_hookean.h>
-#include <estep/systems/contact_parameters.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,5 @@
+#include <estep/composite/contact_system.h>
 #include <estep/io/contact_monitor.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <limits>

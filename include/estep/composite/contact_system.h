@@ -1,8 +1,8 @@
-#ifndef estep_systems_contact_system_h
-#define estep_systems_contact_system_h
+#ifndef estep_composite_contact_system_h
+#define estep_composite_contact_system_h
 
+#include <estep/composite/contact_parameters.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
-#include <estep/systems/contact_parameters.h>
 #include <estep/systems/mechanical_system.h>
 #include <estep/systems/rigid_body_motion.h>
 

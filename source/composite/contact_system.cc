@@ -1,6 +1,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/contact/boundary_triangles.h>
 #include <estep/contact/first_contact.h>
 #include <estep/contact/penalty_contact.h>
@@ -8,7 +9,6 @@
 #include <estep/contact/triangle_intersection.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <limits>

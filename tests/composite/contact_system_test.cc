@@ -6,10 +6,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/contact/penalty_contact.h>
 #include <estep/contact/penalty_flight.h>
 #include <estep/fem/ball_mesh.h>
-#include <estep/systems/contact_system.h>
 
 #include <gtest/gtest.h>
 
