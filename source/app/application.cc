@@ -5,13 +5,13 @@
 #include <deal.II/base/utilities.h>
 
 #include <estep/app/application.h>
+#include <estep/app/ccd_command.h>
 #include <estep/app/input_file.h>
 #include <estep/app/problem.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
 #include <estep/composite/contact_system.h>
-#include <estep/contact/ccd_command.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/implicit/create_implicit_integrator.h>
 #include <estep/io/contact_monitor.h>
@@ -554,8 +554,9 @@ namespace estep
                 std::cout << usage;
                 return exit_success;
               }
-            return contact::run_ccd_command(
-              std::vector<std::string>(argv + 2, argv + argc), std::cout);
+            return run_ccd_command(std::vector<std::string>(argv + 2,
+                                                            argv + argc),
+                                   std::cout);
           }
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)
