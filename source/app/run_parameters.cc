@@ -58,8 +58,8 @@ namespace estep
         Double(0., 1.),
         "Where the levels of energy stepping lie, as a fraction c of the "
         "energy step: at (k + c) h for every integer k. This is the "
-        "additive constant of V that the method leaves free; 0 is the "
-        "reference text's choice. Must be smaller than 1.");
+        "additive constant of V that the method leaves free; 0 puts the "
+        "levels at the integer multiples of h. Must be smaller than 1.");
       prm.declare_entry("Time step",
                         "1e-3",
                         Double(0., max),

@@ -23,8 +23,7 @@ namespace
   missing_query_dir_message()
   {
     return "the CCD sample queries are missing: directory " + query_dir +
-           " (../shared/data/ccd-sample-queries relative to the repository "
-           "root) not found";
+           " not found";
   }
 } // namespace
 

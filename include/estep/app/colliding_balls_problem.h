@@ -6,12 +6,13 @@
 namespace estep
 {
   /**
-   * Two neo-Hookean balls colliding (method.md 5.3): ball 1 at rest at the
+   * Two neo-Hookean balls colliding: ball 1 at rest at the
    * origin, ball 2 on the x axis at a gap from it, moving towards it and
    * spinning about the y axis; contact between their boundary surfaces as the
    * subsection "Contact" says (penalty energy or exact impenetrability). The
    * subsection "Colliding balls" holds the geometry, the material and the
-   * motion; units are those of the parameters (the seed's are SI).
+   * motion; units are those of the parameters (SI in the examples of
+   * parameter_files/).
    */
   namespace CollidingBallsProblem
   {

@@ -6,11 +6,11 @@
 namespace estep
 {
   /**
-   * One neo-Hookean body (the spinning cube of the seed, or any mesh estep can
+   * One neo-Hookean body (the spinning cube, or any mesh estep can
    * build): the subsection "Elastic body" with its mesh, material, initial
    * velocity (a rigid motion or a parsed function) and tracked point. Units are
-   * whatever consistent units the parameters are given in (the seed's cube is
-   * dimensionless).
+   * whatever consistent units the parameters are given in (the spinning cube
+   * is dimensionless).
    */
   namespace ElasticBodyProblem
   {
