@@ -4,9 +4,9 @@
 // non-degenerate ones).
 //
 // Run: benchmark_contact_benchmark [--benchmark_filter=...]. The CCD benchmarks
-// read the sample queries from ESTEP_CCD_QUERY_DIR (environment) or
-// ../shared/data/ccd-sample-queries relative to the source tree (found through
-// __FILE__), and are skipped if absent.
+// read the sample queries of the CCD data set from ESTEP_CCD_QUERY_DIR
+// (environment) or from the data directory kept beside the source tree (found
+// through __FILE__), and are skipped if absent.
 
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/contact/ccd_query_file.h>

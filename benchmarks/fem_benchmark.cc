@@ -1,4 +1,4 @@
-// Cost per cell of the elastic body's hot loops on the seed's cube (n = 8,
+// Cost per cell of the elastic body's hot loops on the spinning cube (n = 8,
 // 12,288 cells): energy + gradient, free-flight value, value and slope,
 // enclose(), building the free-flight view and its admissible limit. Prints the
 // counts, T0 and Lz of the spinning cube first.
@@ -39,7 +39,7 @@ namespace
                                {{0.5, 0.5, 0.5}});
       const auto p = estep::compute_momenta(*body, q, v);
       std::printf(
-        "seed cube: %u cells, %u vertices, T0 = %.6e, Lz = %.7e, log path: %s\n",
+        "spinning cube: %u cells, %u vertices, T0 = %.6e, Lz = %.7e, log path: %s\n",
         body->n_cells(),
         body->n_vertices(),
         estep::kinetic_energy(*body, v),

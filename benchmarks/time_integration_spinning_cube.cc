@@ -1,4 +1,4 @@
-// The cost of an energy-stepping step on the seed's spinning cube (12,288
+// The cost of an energy-stepping step on the spinning cube (12,288
 // cells), as ratios taken in one run: step / gradient evaluation, step /
 // free-flight value evaluation, and the work counted per step (point
 // evaluations and enclosures along the flight, gradients).

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Convergence study of energy-stepping on the frozen argon cluster (the seed's figure 2.8).
+"""Convergence study of energy-stepping on the frozen argon cluster (figure 2.8 of the reference text).
 
 Runs velocity Verlet with dt = 10 fs as the reference and energy-stepping with energy steps
 spanning three decades in units of |E0|, all over T = 1 ns, and reports for each energy step
-the relative H1 error | ||q_h|| - ||q|| | / ||q|| (method.md (2.86)-(2.87)), the mean and the
-maximum time step. Writes convergence.csv, convergence.png (log-log with fitted slopes),
-trajectories.png (the seed's figure 2.7: the atoms' paths over the last 50 ps) and
+the relative H1 error | ||q_h|| - ||q|| | / ||q|| (H1 norms of the trajectories in time), the
+mean and the maximum time step. Writes convergence.csv, convergence.png (log-log with fitted slopes),
+trajectories.png (figure 2.7 of the reference text: the atoms' paths over the last 50 ps) and
 slopes.json to the output directory.
 
 Usage: scripts/argon_convergence.py [--estep build/bin/estep] [--output output/argon_convergence]
@@ -113,9 +113,9 @@ def main():
     slopes["reference_h1_error"] = reference_error
     with open(os.path.join(args.output, "slopes.json"), "w") as f:
         json.dump(slopes, f, indent=2)
-    print(f"fitted slopes: H1 error {slopes['h1_error']:.3f} (seed 1/2), "
-          f"mean step {slopes['mean_step_fs']:.3f} (seed 1), "
-          f"max step {slopes['max_step_fs']:.3f} (seed 1/2)")
+    print(f"fitted slopes: H1 error {slopes['h1_error']:.3f} (reference text 1/2), "
+          f"mean step {slopes['mean_step_fs']:.3f} (reference text 1), "
+          f"max step {slopes['max_step_fs']:.3f} (reference text 1/2)")
 
     if args.no_plots:
         return 0

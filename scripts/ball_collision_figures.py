@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Draw the seed's colliding-ball figures 2.16 and 2.17 from the runs of parameter_files/ball_collision*.prm.
+"""Draw the colliding-ball figures 2.16 and 2.17 of the reference text from the runs of parameter_files/ball_collision*.prm.
 
 Figure 2.16: kinetic, potential and total energy against time for energy-stepping (penalty
 contact, h = 1e3) and explicit Newmark (dt = 3e-5), and the time steps energy-stepping took
@@ -117,7 +117,7 @@ def table(root, runs):
             f"| {contact.get('contact duration', float('nan')):.4f} "
             f"| {contact.get('largest number of intersecting face pairs', 0)} |")
     lines.append("")
-    lines.append("Seed: restitution 0.964, contact duration 0.0476; Hertz estimate "
+    lines.append("Reference text: restitution 0.964, contact duration 0.0476; Hertz estimate "
                  + (f"{hertz:.4f}" if hertz is not None else "not available") + ".")
     text = "\n".join(lines) + "\n"
     print(text, end="")

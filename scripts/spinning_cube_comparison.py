@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Compare every time integrator of estep on the seed's spinning cube.
+"""Compare every time integrator of estep on the spinning cube.
 
 Runs energy-stepping (h = 1e-5), explicit Newmark (dt = 0.0082 and 0.0204), the four implicit
 methods (ida bdf, arkode midpoint, arkode irk, energy momentum) and the converged Newmark run

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Draw the seed's spinning-cube figures 2.11-2.14 from the runs of scripts/spinning_cube_runs.sh.
+"""Draw the spinning-cube figures 2.11-2.14 of the reference text from the runs of scripts/spinning_cube_runs.sh.
 
 Figures 2.11-2.13 compare energy-stepping with explicit Newmark at the mean step energy-stepping
 selected: the tracked point X = (0.5, 1, 1) (x, y, z against t), the total, potential and

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# All runs of the seed's spinning-cube figures 2.11-2.14: energy-stepping with h = 1e-5 (t to
-# 80), 3e-5 and 6e-5 (t to 250), and explicit Newmark with dt = 0.0082, 0.0204, 0.0381 and the
+# All runs of the spinning-cube figures 2.11-2.14 of the reference text: energy-stepping with
+# h = 1e-5 (t to 80), 3e-5 and 6e-5 (t to 250), and explicit Newmark with dt = 0.0082, 0.0204, 0.0381 and the
 # converged 1e-4. Writes output/spinning_cube*/ and prints each run's wall time; then
 # scripts/spinning_cube_figures.py draws the figures. The converged Newmark run takes several
 # minutes; the others take seconds to a minute each (Release, one core).

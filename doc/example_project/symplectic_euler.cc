@@ -43,9 +43,9 @@ namespace
       // sum of the earlier steps accumulated, rather than followed by a step
       // of round-off length.
       const double remaining = t_limit - t;
-      const double tau = remaining < dt * (1. + 1e-6) ? remaining : dt;
-      q_old            = q;
-      v_old            = v;
+      const double tau       = remaining < dt * (1. + 1e-6) ? remaining : dt;
+      q_old                  = q;
+      v_old                  = v;
       system.gradient(q, gradient);
       ++n_gradients;
       const estep::Vector &inverse_mass = system.inverse_mass();

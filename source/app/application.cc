@@ -4,13 +4,13 @@
 #include <deal.II/base/utilities.h>
 
 #include <estep/app/application.h>
+#include <estep/app/ccd_command.h>
 #include <estep/app/input_file.h>
 #include <estep/app/renamed_entries.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
-#include <estep/contact/ccd_command.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
 #include <estep/materials/material_registry.h>
@@ -504,8 +504,9 @@ namespace estep
                 std::cout << usage;
                 return exit_success;
               }
-            return contact::run_ccd_command(
-              std::vector<std::string>(argv + 2, argv + argc), std::cout);
+            return run_ccd_command(std::vector<std::string>(argv + 2,
+                                                            argv + argc),
+                                   std::cout);
           }
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)

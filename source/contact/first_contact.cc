@@ -15,36 +15,10 @@ namespace estep
       constexpr double unit = std::numeric_limits<double>::epsilon() / 2.;
 
       inline Point3
-      minus(const Point3 &a, const Point3 &b)
-      {
-        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
-      }
-
-      inline Point3
-      cross(const Point3 &a, const Point3 &b)
-      {
-        return {{a[1] * b[2] - a[2] * b[1],
-                 a[2] * b[0] - a[0] * b[2],
-                 a[0] * b[1] - a[1] * b[0]}};
-      }
-
-      inline double
-      dot(const Point3 &a, const Point3 &b)
-      {
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      }
-
-      inline Point3
-      point(const double *x, const unsigned int i)
-      {
-        return {{x[3 * i], x[3 * i + 1], x[3 * i + 2]}};
-      }
-
-      inline Point3
       unit_normal(const double *x, const TriangleIndices &t)
       {
-        Point3       n = cross(minus(point(x, t[1]), point(x, t[0])),
-                         minus(point(x, t[2]), point(x, t[0])));
+        Point3       n = cross(minus(point_at(x, t[1]), point_at(x, t[0])),
+                         minus(point_at(x, t[2]), point_at(x, t[0])));
         const double l = std::sqrt(dot(n, n));
         if (l > 0.)
           for (double &c : n)
@@ -73,8 +47,8 @@ namespace estep
         double d = 0., r = 0.;
         for (unsigned int k = 0; k < 4; ++k)
           {
-            d += c.weights[k] * dot(c.normal, point(x, c.points[k]));
-            r += c.weights[k] * dot(c.normal, point(v, c.points[k]));
+            d += c.weights[k] * dot(c.normal, point_at(x, c.points[k]));
+            r += c.weights[k] * dot(c.normal, point_at(v, c.points[k]));
           }
         return {d, r};
       }
@@ -93,7 +67,7 @@ namespace estep
                                    const double        slack)
       {
         const auto length = [x](const unsigned int i, const unsigned int j) {
-          const Point3 d = minus(point(x, i), point(x, j));
+          const Point3 d = minus(point_at(x, i), point_at(x, j));
           return std::sqrt(dot(d, d));
         };
         const auto within = [slack](const double t, const double size) {
@@ -127,8 +101,8 @@ namespace estep
       Point3 n;
       if (!edge_edge)
         {
-          const Point3 p = point(x, points[0]), a = point(x, points[1]),
-                       b = point(x, points[2]), cc = point(x, points[3]);
+          const Point3 p = point_at(x, points[0]), a = point_at(x, points[1]),
+                       b = point_at(x, points[2]), cc = point_at(x, points[3]);
           const Point3 e1 = minus(b, a), e2 = minus(cc, a), r = minus(p, a);
           n              = cross(e1, e2);
           const double A = dot(e1, e1), B = dot(e1, e2), C = dot(e2, e2);
@@ -143,8 +117,8 @@ namespace estep
         }
       else
         {
-          const Point3 a0 = point(x, points[0]), a1 = point(x, points[1]),
-                       b0 = point(x, points[2]), b1 = point(x, points[3]);
+          const Point3 a0 = point_at(x, points[0]), a1 = point_at(x, points[1]),
+                       b0 = point_at(x, points[2]), b1 = point_at(x, points[3]);
           const Point3 da = minus(a1, a0), db = minus(b1, b0),
                        r = minus(a0, b0);
           const double A = dot(da, da), B = dot(da, db), C = dot(db, db);

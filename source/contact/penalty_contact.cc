@@ -11,26 +11,6 @@ namespace estep
   {
     namespace
     {
-      inline Point3
-      minus(const Point3 &a, const Point3 &b)
-      {
-        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
-      }
-
-      inline Point3
-      cross(const Point3 &a, const Point3 &b)
-      {
-        return {{a[1] * b[2] - a[2] * b[1],
-                 a[2] * b[0] - a[0] * b[2],
-                 a[0] * b[1] - a[1] * b[0]}};
-      }
-
-      inline double
-      dot(const Point3 &a, const Point3 &b)
-      {
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      }
-
       // gradient += w^T dX/d(vertices) for the end point X produced by source
       // s.
       void
@@ -74,13 +54,6 @@ namespace estep
           }
       }
 
-      inline void
-      gather(const double *q, const TriangleIndices &t, Triangle3 &T)
-      {
-        for (unsigned int v = 0; v < 3; ++v)
-          for (unsigned int k = 0; k < 3; ++k)
-            T[v][k] = q[3 * t[v] + k];
-      }
     } // namespace
 
 
@@ -157,13 +130,12 @@ namespace estep
 
       const auto &tris  = bvh.get_triangles();
       double      total = 0.;
-      Triangle3   T0, T1;
       for (const auto &[i, j] : pairs)
         {
           if (excluded_by_group(i, j))
             continue;
-          gather(q, tris[i], T0);
-          gather(q, tris[j], T1);
+          const Triangle3        T0 = triangle_at(q, tris[i]);
+          const Triangle3        T1 = triangle_at(q, tris[j]);
           std::array<double, 18> grad;
           const double           gap =
             squared_intersection_length(T0, T1, g != nullptr ? &grad : nullptr);

@@ -142,26 +142,6 @@ namespace estep
                               IntersectionKind::segment;
       }
 
-      inline Point3
-      minus(const Point3 &a, const Point3 &b)
-      {
-        return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
-      }
-
-      inline Point3
-      cross(const Point3 &a, const Point3 &b)
-      {
-        return {{a[1] * b[2] - a[2] * b[1],
-                 a[2] * b[0] - a[0] * b[2],
-                 a[0] * b[1] - a[1] * b[0]}};
-      }
-
-      inline double
-      dot(const Point3 &a, const Point3 &b)
-      {
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      }
-
       // The point where edge (a, b) of E meets the plane of F; s are the exact
       // signs of E's vertices with respect to F's plane.
       inline Point3

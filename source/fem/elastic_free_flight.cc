@@ -312,13 +312,13 @@ namespace estep
     Assert(a <= b, dealii::ExcMessage("enclose(a, b) needs a <= b."));
     // The centre m and a half-width r with [a, b] in [m - r, m + r] despite
     // the rounding of m.
-    const double m = 0.5 * (a + b);
-    const double r = std::max(b - m, m - a) * (1. + 4. * unit);
+    const LineTaylorForm about = LineTaylorForm::about_centre_of(a, b);
+    const double         m = about.centre, r = about.radius;
     // f and f' at the centre.
     const LineValue fm = value_and_derivative(m);
     LineEnclosure   enclosure;
-    if (const auto taylor = taylor_form(m, r, fm))
-      enclosure = *taylor;
+    if (const auto taylor = taylor_form(about, fm))
+      enclosure = taylor->enclosure();
     else
       enclosure = natural_form(a, b, m, r);
     if (m >= a && m <= b)
@@ -395,10 +395,9 @@ namespace estep
     }
   } // namespace
 
-  std::optional<LineEnclosure>
-  ElasticFreeFlight::taylor_form(const double     m,
-                                 const double     r,
-                                 const LineValue &fm) const
+  std::optional<LineTaylorForm>
+  ElasticFreeFlight::taylor_form(const LineTaylorForm &about,
+                                 const LineValue      &fm) const
   {
     // f(m + t) = f(m) + f'(m) t + f''(xi) t^2 / 2 and
     // f'(m + t) = f'(m) + f''(xi) t, |t| <= r, with f'' enclosed per cell from
@@ -407,6 +406,7 @@ namespace estep
     // cancel (a rigid rotation leaves V = O(s^4) from terms of size O(s^2)).
     if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
       return std::nullopt;
+    const double m = about.centre, r = about.radius;
     // The curvature of the volumetric part, chunk by chunk (the interval sum
     // rounds outward).
     JacobianRanges ranges;
@@ -437,25 +437,17 @@ namespace estep
     curvature += Interval::point(2. * quadratic[2]);
     slope_magnitude +=
       std::abs(quadratic[1]) + 2. * std::abs(quadratic[2]) * (std::abs(m) + r);
-    const double value_margin =
-      64. * unit * (gross_magnitude + std::abs(fm.value));
-    const double  slope_margin = 64. * unit * slope_magnitude;
-    LineEnclosure enclosure;
-    // f lies between the quadratics with the extreme curvatures: their exact
-    // ranges over |t| <= r (the vertex of the lower one, near a minimum of f,
-    // is far tighter than the bound |f'(m)| r).
-    enclosure.value =
-      Interval{
-        quadratic_range(fm.value, fm.derivative, 0.5 * curvature.lower, -r, r)
-          .lower,
-        quadratic_range(fm.value, fm.derivative, 0.5 * curvature.upper, -r, r)
-          .upper}
-        .widened(0., value_margin);
-    enclosure.derivative =
-      (Interval::point(fm.derivative) + curvature * Interval{-r, r})
-        .widened(0., slope_margin);
-    enclosure.curvature = curvature;
-    return enclosure;
+    // f is smooth where the form applies (W = 0). The round-off bounds: 32
+    // units of round-off of the magnitudes of the terms of f and of f' (the
+    // enclosure widens the values by twice the first, plus the slope's error
+    // over the half-width, and the slopes by twice the second).
+    LineTaylorForm form = about;
+    form.value          = fm.value;
+    form.slope          = fm.derivative;
+    form.curvature      = curvature;
+    form.value_error    = 32. * unit * (gross_magnitude + std::abs(fm.value));
+    form.slope_error    = 32. * unit * slope_magnitude;
+    return form;
   }
 
   LineEnclosure

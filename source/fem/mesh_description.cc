@@ -70,17 +70,17 @@ namespace estep
       "Type",
       defaults.type,
       dealii::Patterns::Selection("seed cube|deal.II|deal.II 24|gmsh"),
-      "How the tetrahedral mesh is made: 'seed cube' (the seed's cube: "
+      "How the tetrahedral mesh is made: 'seed cube' (a box divided into "
       "n^3 hexahedra of 24 tetrahedra each), 'deal.II' (a deal.II hexahedral "
       "generator converted with convert_hypercube_to_simplex_mesh), 'deal.II 24' "
-      "(the same generator split into 24 tetrahedra per hexahedron as the seed "
-      "cube), or 'gmsh' (a .msh file of tetrahedra).");
+      "(the same generator with every hexahedron split into 24 tetrahedra, as "
+      "in 'seed cube'), or 'gmsh' (a .msh file of tetrahedra).");
     prm.declare_entry(
       "Subdivisions",
       std::to_string(defaults.n_subdivisions),
       dealii::Patterns::Integer(1),
-      "seed cube: number of hexahedra per direction (8 for the seed's mesh of "
-      "12,288 tetrahedra).");
+      "seed cube: number of hexahedra per direction (8: the spinning cube's "
+      "mesh of 12,288 tetrahedra).");
     prm.declare_entry("Lower corner",
                       print_point(defaults.lower),
                       dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),

@@ -1,7 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/io/contact_monitor.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <limits>

@@ -62,7 +62,7 @@ namespace estep
   create_postprocessors(dealii::ParameterHandler   &prm,
                         const PostprocessorContext &context)
   {
-    std::vector<std::string> names;
+    std::vector<std::string>                    names;
     std::vector<std::unique_ptr<Postprocessor>> postprocessors;
     for (const std::string &name :
          dealii::Utilities::split_string_list(prm.get("List"), ','))
@@ -71,10 +71,9 @@ namespace estep
           throw std::runtime_error("Postprocessors/List: <" + name +
                                    "> is listed twice.");
         names.push_back(name);
-        auto postprocessor =
-          postprocessor_registry()
-            .get(name, "Postprocessors/List")
-            .create(prm, context);
+        auto postprocessor = postprocessor_registry()
+                               .get(name, "Postprocessors/List")
+                               .create(prm, context);
         if (postprocessor)
           postprocessors.push_back(std::move(postprocessor));
       }

@@ -1,12 +1,12 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_parameters.h>
+#include <estep/composite/contact_system.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
-#include <estep/systems/contact_parameters.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -38,8 +38,8 @@ namespace estep
           "0.3",
           Double(0., max),
           "Target edge length of the ball meshes relative to their radius "
-          "(0.3: 898 tetrahedra and 258 vertices per ball; the seed used 864 "
-          "and 250).");
+          "(0.3: 898 tetrahedra and 258 vertices per ball; the reference "
+          "text's mesh had 864 and 250).");
         prm.declare_entry(
           "Gap",
           "0.5",
@@ -108,8 +108,8 @@ namespace estep
         }
 
       // Hertz's estimate of the contact duration of two equal elastic spheres
-      // meeting head-on at relative speed v0 (method.md 5.3, as the seed
-      // writes it).
+      // meeting head-on at relative speed v0 (as the reference text writes
+      // it).
       const double lambda = choice.material->small_strain_lambda();
       const double mu     = choice.material->small_strain_mu();
       const double E      = mu * (3. * lambda + 2. * mu) / (lambda + mu);

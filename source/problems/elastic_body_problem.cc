@@ -66,7 +66,7 @@ namespace estep
             "Angular velocity",
             "0, 0, 1",
             point,
-            "omega of the rigid motion (the seed's cube: 1 about z).");
+            "omega of the rigid motion (the spinning cube: 1 about z).");
           prm.declare_entry("Rotation centre",
                             "0.5, 0.5, 0.5",
                             point,

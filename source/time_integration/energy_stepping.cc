@@ -69,8 +69,6 @@ namespace estep
       return;
 
     CrossingQuery query;
-    query.lower_level  = level_height(level);
-    query.upper_level  = level_height(level + 1);
     query.horizon      = horizon;
     query.first_window = (last_flight > 0.) ? 2. * last_flight : horizon;
     Crossing                       crossing;
@@ -79,10 +77,16 @@ namespace estep
     // A constraint event at s = 0 (another contact touching and approaching
     // at this instant) is resolved here, before the flight: reflect and
     // search again, so that simultaneous contacts make no zero-length steps.
-    // The cap only guards against a cycle; a contact it leaves makes one.
+    // The reflection leaves q where it is, so the flight still departs from
+    // the level it sat on; if the new velocity carries it back through that
+    // level at once (a crossing at s = 0), the jump there is made at this
+    // instant too. The cap only guards against a cycle; an event it leaves
+    // makes a zero-length step.
     for (unsigned int k = 0;; ++k)
       {
-        query.departure = departure;
+        query.lower_level = level_height(level);
+        query.upper_level = level_height(level + 1);
+        query.departure   = departure;
         try
           {
             crossing = find_first_crossing(*system.free_flight(q, v),
@@ -101,11 +105,23 @@ namespace estep
           }
         s_level = crossing.direction != 0 ? crossing.s : horizon;
         contact = system.first_constraint_event(q, v, s_level);
-        if (!contact || contact->s > 0. || k == max_simultaneous_contacts)
+        if (k == max_simultaneous_events)
           break;
-        reflect(contact->normal);
-        ++n_constraint_events;
-        departure = Departure::interior;
+        if (contact && contact->s == 0.)
+          {
+            reflect(contact->normal);
+            ++n_constraint_events;
+            continue;
+          }
+        if (!contact && k > 0 && crossing.direction != 0 && crossing.s == 0.)
+          {
+            const std::uint64_t n_jumps = n_climbs + n_descents + n_reflections;
+            jump_at_level(crossing.direction);
+            // (A touch without a jump leaves the search's answer as it was.)
+            if (n_climbs + n_descents + n_reflections > n_jumps)
+              continue;
+          }
+        break;
       }
 
     // The flight.
@@ -303,8 +319,8 @@ namespace estep
         dealii::Patterns::Double(0., 1.),
         "Where the levels lie, as a fraction c of the energy step: at (k + "
         "c) h for every integer k. This is the additive constant of V that "
-        "the method leaves free; 0 is the reference text's choice. Must be "
-        "smaller than 1.");
+        "the method leaves free; 0 puts the levels at the integer multiples "
+        "of h. Must be smaller than 1.");
       prm.leave_subsection();
     }
 

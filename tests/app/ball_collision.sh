@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The seed's colliding balls through the application, to t = 0.5 as in the seed: the penalty
+# The colliding balls through the application, to t = 0.5 as in the reference text: the penalty
 # run (parameter_files/ball_collision.prm) and the exact-impenetrability run, then
 # scripts/ball_collision_figures.py on their output.
 # Checked from summary.json and history.csv: both runs complete and conserve the terraced
 # energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
 # intersecting faces during contact, the impenetrable run none at any step end; both report a
-# coefficient of restitution in [0.7, 1] and a contact duration in [0.03, 0.07] (seed 0.964,
+# coefficient of restitution in [0.7, 1] and a contact duration in [0.03, 0.07] (reference text 0.964,
 # 0.0476; the restitution is chaotic in round-off: 0.811 ... 0.912 measured under
 # perturbations of 1e-10 and below, doc/contact_system.md); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact, but no
 # step has zero length (simultaneous contacts make one event). Then the

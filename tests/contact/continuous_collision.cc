@@ -1,9 +1,8 @@
 // Conservative CCD: every query of the sample data set (no false negatives),
 // exact contacts constructed on a dyadic grid (many of them degenerate) always
 // found, contact times never later than the exact time on constructed cases,
-// the non-degeneracy criterion, the command and its error messages.
+// the non-degeneracy criterion, the query file's error messages.
 
-#include <estep/contact/ccd_command.h>
 #include <estep/contact/ccd_query_file.h>
 #include <estep/contact/continuous_collision.h>
 
@@ -12,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <sstream>
 
 using namespace estep::contact;
 
@@ -25,8 +23,7 @@ namespace
   missing_query_dir_message()
   {
     return "the CCD sample queries are missing: directory " + query_dir +
-           " (../shared/data/ccd-sample-queries relative to the repository "
-           "root) not found";
+           " not found";
   }
 } // namespace
 
@@ -254,22 +251,11 @@ TEST(ContinuousCollision, TimeIsNeverLate)
     }
 }
 
-TEST(ContinuousCollision, CommandCountsAndErrors)
+TEST(ContinuousCollision, QueryFileErrorsNameTheFileAndLine)
 {
   namespace fs = std::filesystem;
-  EXPECT_TRUE(fs::is_directory(query_dir)) << missing_query_dir_message();
-  if (fs::is_directory(query_dir))
-    {
-      std::ostringstream out;
-      EXPECT_EQ(run_ccd_command({query_dir + "/unit-tests"}, out), 0);
-      EXPECT_NE(out.str().find("false negatives:     0 (non-degenerate 0)"),
-                std::string::npos)
-        << out.str();
-      EXPECT_NE(out.str().find("non-degenerate:      "), std::string::npos)
-        << out.str();
-    }
   const fs::path dir =
-    fs::temp_directory_path() / "estep_ccd_test" / "vertex-face";
+    fs::temp_directory_path() / "estep_ccd_query_test" / "vertex-face";
   fs::create_directories(dir);
   const std::string bad = (dir / "bad.csv").string();
   {
@@ -277,10 +263,9 @@ TEST(ContinuousCollision, CommandCountsAndErrors)
     for (unsigned int i = 0; i < 8; ++i)
       f << (i == 5 ? "1,1,2,x,3,1,0" : "1,1,2,1,3,1,0") << "\n";
   }
-  std::ostringstream out;
   try
     {
-      run_ccd_command({dir.parent_path().string()}, out);
+      read_ccd_query_file(bad);
       ADD_FAILURE() << "no exception";
     }
   catch (const std::runtime_error &e)
@@ -294,8 +279,5 @@ TEST(ContinuousCollision, CommandCountsAndErrors)
     f << "1,1,2,1,3,1,0\n";
   }
   EXPECT_THROW(read_ccd_query_file(bad), std::runtime_error);
-  EXPECT_THROW(run_ccd_command({"/nonexistent/estep"}, out),
-               std::runtime_error);
-  EXPECT_THROW(run_ccd_command({}, out), std::runtime_error);
   fs::remove_all(dir.parent_path());
 }

@@ -1,7 +1,7 @@
-// Energy-stepping on the seed's spinning cube never leaves its terrace: V
+// Energy-stepping on the spinning cube never leaves its terrace: V
 // sampled at 64 points inside every flight stays between the flight's two
-// levels (up to the flight's round-off), for the seed's three energy steps
-// and shifted terraces; and the cube's flow is time-reversible.
+// levels (up to the flight's round-off), for the reference text's three energy
+// steps and shifted terraces; and the cube's flow is time-reversible.
 #include <estep/time_integration/energy_stepping.h>
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The P1 elastic body on the seed's cube: counts, mass, the spinning-cube
+// The P1 elastic body on the spinning cube: counts, mass, the spinning-cube
 // initial energy and angular momentum, energy and gradient, invariance under
 // rigid motions, bad meshes.
 #include <deal.II/base/exceptions.h>

@@ -23,7 +23,7 @@ namespace
     return x;
   }
 
-  /** A deformed, moving state of the seed cube: spin plus random velocities. */
+  /** A deformed, moving state of the cube: spin plus random velocities. */
   void
   state(const estep::ElasticBody &body,
         estep::Vector            &q,

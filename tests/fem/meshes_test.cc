@@ -1,5 +1,5 @@
-// Meshes: the seed cube, deal.II generators, gmsh files and the error messages
-// for bad input.
+// Meshes: the cube of hexahedra split into 24 tetrahedra, deal.II generators,
+// gmsh files and the error messages for bad input.
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 

@@ -13,7 +13,7 @@
 
 namespace estep_test
 {
-  /** The seed's spinning-cube body: n^3 hexahedra of 24 tets, lambda0 = 0.01,
+  /** The spinning-cube body: n^3 hexahedra of 24 tets, lambda0 = 0.01,
    * mu0 = 0.0066, rho = 0.1. */
   inline std::shared_ptr<const estep::ElasticBody>
   cube_body(const unsigned int n)
@@ -24,7 +24,7 @@ namespace estep_test
       tria, std::make_shared<estep::NeoHookean>(0.0100, 0.0066), 0.100, "cube");
   }
 
-  /** The n = 8 seed cube, built once. */
+  /** The n = 8 spinning cube, built once. */
   inline const estep::ElasticBody &
   seed_cube()
   {

@@ -1,4 +1,4 @@
-// The implicit integrators on a nonlinear system, the smallest seed cube (24
+// The implicit integrators on a nonlinear system, the smallest cube mesh (24
 // neo-Hookean tets) in a large-strain motion, against a converged reference
 // computed by a different method (velocity Verlet at a tiny step); the
 // energy-momentum scheme's discrete gradient against its defining identities;

@@ -20,7 +20,7 @@
 
 namespace estep_test
 {
-  /** The seed's spinning-cube body (n^3 hexahedra of 24 tets) with a Hessian.
+  /** The spinning-cube body (n^3 hexahedra of 24 tets) with a Hessian.
    */
   inline std::unique_ptr<estep::ElasticBodyWithHessian>
   cube_with_hessian(const unsigned int n)

@@ -1,4 +1,4 @@
-// Each implicit integrator on the seed's spinning cube (n = 8: 12,288 tets)
+// Each implicit integrator on the spinning cube (n = 8: 12,288 tets)
 // to t = 20 (tier "long": minutes). The figures are recorded in the XML
 // output (--gtest_output=xml) for doc/implicit_integrators.md.
 #include <deal.II/base/mpi.h>

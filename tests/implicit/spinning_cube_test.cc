@@ -1,5 +1,6 @@
-// Each implicit integrator on the spinning neo-Hookean cube (coarse seed mesh,
-// n = 2) to t = 20: energy and angular momentum behave as the method promises.
+// Each implicit integrator on the spinning neo-Hookean cube (a coarse cube
+// mesh, n = 2) to t = 20: energy and angular momentum behave as the method
+// promises.
 #include <estep/implicit/arkode_runge_kutta.h>
 #include <estep/implicit/energy_momentum.h>
 #include <estep/implicit/ida_bdf.h>

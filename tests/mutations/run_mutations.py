@@ -119,7 +119,7 @@ def main():
     sync_tree(SOURCE, source)
     data = SOURCE.parent / "shared"
     if data.is_dir() and not (scratch / "shared").exists():
-        (scratch / "shared").symlink_to(data)  # ../shared of the copy
+        (scratch / "shared").symlink_to(data)  # the data beside the copy, as beside the tree
 
     log = open(scratch / "mutations.log", "w")
     configure = ["cmake", "-S", str(source), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",

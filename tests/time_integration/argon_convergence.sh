@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The argon convergence study (the seed's figure 2.8): fitted slopes of the relative H1 error,
-# the mean step and the maximum step against the energy step, with the seed's 1/2, 1 and 1/2.
+# The argon convergence study (figure 2.8 of the reference text): fitted slopes of the relative
+# H1 error, the mean step and the maximum step against the energy step, with the reference
+# text's 1/2, 1 and 1/2.
 set -eu
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -202,7 +202,7 @@ namespace
     };
 
     // The time spent on the last terrace before a turning point is O(h^1/2), so
-    // the position error converges like h^1/2 (the seed's rate).
+    // the position error converges like h^1/2 (the reference text's rate).
     double              previous_error = 1e300;
     std::vector<double> errors;
     for (const double relative_step : {1e-2, 1e-3, 1e-4, 1e-5})

@@ -1,6 +1,8 @@
 #ifndef estep_contact_bounding_volume_hierarchy_h
 #define estep_contact_bounding_volume_hierarchy_h
 
+#include <estep/contact/geometry.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -11,10 +13,6 @@ namespace estep
 {
   namespace contact
   {
-    /** A surface triangle given by three point indices into a point-major
-     * coordinate vector. */
-    using TriangleIndices = std::array<unsigned int, 3>;
-
     /** An axis-aligned box [lower, upper] (closed). */
     struct BoundingBox
     {

@@ -1,7 +1,7 @@
 #ifndef estep_contact_ccd_query_file_h
 #define estep_contact_ccd_query_file_h
 
-#include <estep/contact/predicates.h>
+#include <estep/contact/geometry.h>
 
 #include <array>
 #include <string>

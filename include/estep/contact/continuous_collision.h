@@ -1,7 +1,7 @@
 #ifndef estep_contact_continuous_collision_h
 #define estep_contact_continuous_collision_h
 
-#include <estep/contact/predicates.h>
+#include <estep/contact/geometry.h>
 
 #include <array>
 

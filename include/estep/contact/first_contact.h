@@ -3,7 +3,7 @@
 
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/contact/continuous_collision.h>
-#include <estep/contact/predicates.h>
+#include <estep/contact/geometry.h>
 
 #include <array>
 #include <cstddef>

@@ -1,15 +1,14 @@
 #ifndef estep_contact_predicates_h
 #define estep_contact_predicates_h
 
+#include <estep/contact/geometry.h>
+
 #include <array>
 
 namespace estep
 {
   namespace contact
   {
-    /** A point of 3D space, coordinates in the length unit of the model. */
-    using Point3 = std::array<double, 3>;
-
     /** A point of the plane. */
     using Point2 = std::array<double, 2>;
 

@@ -1,6 +1,7 @@
 #ifndef estep_contact_triangle_intersection_h
 #define estep_contact_triangle_intersection_h
 
+#include <estep/contact/geometry.h>
 #include <estep/contact/predicates.h>
 
 #include <array>
@@ -9,9 +10,6 @@ namespace estep
 {
   namespace contact
   {
-    /** A triangle of 3D space given by its three vertices. */
-    using Triangle3 = std::array<Point3, 3>;
-
     /** What the intersection of two closed triangles is. */
     enum class IntersectionKind
     {

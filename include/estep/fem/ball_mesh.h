@@ -17,8 +17,8 @@ namespace estep
    * 3D Delaunay, one thread, fixed options, so the mesh is reproducible for a
    * given gmsh version). The target element size is @p mesh_size times the
    * radius; boundary nodes lie on the sphere. The default 0.3 gives about
-   * the seed's size: 898 tetrahedra and 258 vertices with Debian's gmsh
-   * 4.8.4 (0.6: 155 and 64; see doc/contact_system.md).
+   * the reference text's size: 898 tetrahedra and 258 vertices with Debian's
+   * gmsh 4.8.4 (0.6: 155 and 64; see doc/contact_system.md).
    *
    * @p tria must be empty. Throws dealii::ExcMessage if gmsh fails or
    * produces no tetrahedra; the result passes check_tetrahedral_mesh(). gmsh

@@ -2,6 +2,7 @@
 #define estep_fem_elastic_free_flight_h
 
 #include <estep/systems/free_flight.h>
+#include <estep/systems/line_taylor_form.h>
 #include <estep/systems/mechanical_system.h>
 
 #include <array>
@@ -28,10 +29,11 @@ namespace estep
    * enclose(a, b): per cell, enclosures of J_e, J_e' and J_e'' over [a, b]
    * from the exact expansion of the cubic about the centre m (widened by a
    * rounding bound); then the second-order form f(m) + f'(m) t + f''([a, b])
-   * t^2 / 2 with the material's rigorous enclosure of the volumetric part of
-   * f''. Where that is unbounded (an element may invert in [a, b]), the sum of
-   * the per-cell ranges of the material's volumetric term and the exact range
-   * of Q instead.
+   * t^2 / 2 (a LineTaylorForm with W = 0) with the material's rigorous
+   * enclosure of the volumetric part of f''; the enclosure reports that
+   * curvature and f, f' at m as its sample. Where f'' is unbounded (an element
+   * may invert in [a, b]), the sum of the per-cell ranges of the material's
+   * volumetric term and the exact range of Q instead.
    *
    * admissible_limit(): the smallest positive root over cells of J_e(s),
    * computed from below (see the implementation: monotone pieces between
@@ -76,11 +78,12 @@ namespace estep
     quadratic_part() const;
 
   private:
-    /** The second-order (Taylor) form about the centre @p m of [m - r, m +
-     * r], from f and f' there and the enclosure of f''; empty if f'' is
-     * unbounded there. */
-    std::optional<LineEnclosure>
-    taylor_form(const double m, const double r, const LineValue &fm) const;
+    /** The second-order (Taylor) form about the centre of @p about (a form
+     * of 0 about m, with its radius r), from f and f' at m (@p fm) and the
+     * enclosure of f'' over [m - r, m + r]; empty if f'' is unbounded
+     * there. */
+    std::optional<LineTaylorForm>
+    taylor_form(const LineTaylorForm &about, const LineValue &fm) const;
 
     /** The sum of the per-cell ranges of f and f' over [a, b], which lies in
      * [m - half_width, m + half_width]. */

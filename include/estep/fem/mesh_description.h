@@ -17,7 +17,8 @@ namespace estep
    * A tetrahedral mesh described by a type name and parameters, as read from a
    * parameter file. make_mesh() builds it. The types:
    *
-   * - "seed cube": the seed's cube mesh (make_seed_cube_mesh()): the box
+   * - "seed cube": a cube of hexahedra split into tetrahedra
+   * (make_seed_cube_mesh()): the box
    * [lower, upper] divided into n_subdivisions^3 hexahedra, 24 tetrahedra each
    * (n_subdivisions = 8 on the unit cube: 12,288 cells, 2,969 vertices). Uses
    * n_subdivisions, lower, upper.
@@ -27,7 +28,7 @@ namespace estep
    *   GridGenerator::convert_hypercube_to_simplex_mesh (curved manifolds are
    * not kept: the conversion sees the refined vertices).
    * - "deal.II 24": the same generator and refinements, split with
-   *   split_hexahedra_into_24_tetrahedra() (the seed's 24-tetrahedra split).
+   *   split_hexahedra_into_24_tetrahedra() (as "seed cube").
    * - "gmsh": a gmsh .msh file (formats 2 and 4 that deal.II's GridIn::read_msh
    * reads), of tetrahedra; uses file_name.
    *

@@ -12,7 +12,8 @@ namespace dealii
 namespace estep
 {
   /**
-   * The seed's cube mesh: the box [lower, upper] (the unit cube by default)
+   * The cube mesh of the spinning-cube example: the box [lower, upper] (the
+   * unit cube by default)
    * divided into an n x n x n grid of hexahedra, each split into 24 tetrahedra
    * by split_hexahedra_into_24_tetrahedra(). For n = 8: 12,288 cells and 2,969
    * vertices (729 grid points + 1,728 face centres + 512 hexahedron centres).

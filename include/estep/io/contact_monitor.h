@@ -51,9 +51,9 @@ namespace estep
      * before and (q1, v1) after it: e^2 = T_rel(1) / T_rel(0), with T_rel the
      * kinetic energy of the bodies' centre-of-mass velocities relative to the
      * system's centre of mass. For two equal bodies, one of them at rest, this
-     * is the seed's T_f / T_0 = (1 + e^2) / 2 with T the centre-of-mass
-     * kinetic energies. NaN if the bodies do not move relative to each other
-     * at the start.
+     * is the reference text's T_f / T_0 = (1 + e^2) / 2 with T the
+     * centre-of-mass kinetic energies. NaN if the bodies do not move relative
+     * to each other at the start.
      */
     double
     restitution(const Vector &q0,

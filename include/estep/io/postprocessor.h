@@ -89,10 +89,7 @@ namespace estep
  * (a PostprocessorFactory). A postprocessor's source file ends with this.
  */
 #define ESTEP_REGISTER_POSTPROCESSOR(name, description, declare, create) \
-  ESTEP_REGISTER_PLUGIN(::estep::postprocessor_registry(),               \
-                        name,                                            \
-                        description,                                     \
-                        declare,                                         \
-                        create)
+  ESTEP_REGISTER_PLUGIN(                                                 \
+    ::estep::postprocessor_registry(), name, description, declare, create)
 
 #endif

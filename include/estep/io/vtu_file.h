@@ -16,9 +16,9 @@ namespace estep
    * fields and points as Float32 like deal.II's DataOut. Unlike DataOut, which
    * writes each cell as its own patch with four private vertices, vertex
    * fields are stored once per vertex and cell fields once per cell: for the
-   * seed cube a snapshot holds 2,969 points instead of 49,152. The points and
-   * cells do not change between snapshots and are encoded once, in the
-   * constructor.
+   * spinning cube (n = 8) a snapshot holds 2,969 points instead of 49,152. The
+   * points and cells do not change between snapshots and are encoded once, in
+   * the constructor.
    */
   class VtuFile
   {

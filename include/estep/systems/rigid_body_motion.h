@@ -10,8 +10,8 @@ namespace estep
   /**
    * The rigid part of the motion of a set of points: mass, centre of mass, its
    * velocity, and the angular momentum about the centre of mass divided by the
-   * mass (the "Omega" of the seed's ball collision, units length^2 / time; for
-   * a rigid ball of radius R spinning with omega it is 2/5 R^2 omega).
+   * mass (the "Omega" of the colliding-balls figures, units length^2 / time;
+   * for a rigid ball of radius R spinning with omega it is 2/5 R^2 omega).
    */
   struct RigidBodyMotion
   {

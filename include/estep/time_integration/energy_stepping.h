@@ -24,7 +24,10 @@ namespace estep
    * At a constraint event the velocity reflects on the constraint normal; a
    * further event at the same instant (another contact touching and
    * approaching) is reflected on at once and the flight searched again, so
-   * that simultaneous contacts make no zero-length steps. The
+   * that simultaneous contacts make no zero-length steps. Such a reflection
+   * does not move q: the flight still departs from the level it sat on, and
+   * if the new velocity carries it back through that level at once, the jump
+   * there is made at the same instant as well. The
    * terrace index L is an integer carried from event to event, never recomputed
    * from V.
    *
@@ -111,8 +114,9 @@ namespace estep
     void
     jump_at_level(const int direction);
 
-    /** The most constraint events resolved at one instant before a step. */
-    static constexpr unsigned int max_simultaneous_contacts = 1000;
+    /** The most events (constraint reflections and the level jumps they
+     * cause) resolved at one instant before a step. */
+    static constexpr unsigned int max_simultaneous_events = 1000;
 
     /** Reflect the velocity on a constraint @p normal. */
     void

@@ -44,10 +44,7 @@ namespace estep
  * ends with this.
  */
 #define ESTEP_REGISTER_INTEGRATOR(name, description, declare, create) \
-  ESTEP_REGISTER_PLUGIN(::estep::integrator_registry(),               \
-                        name,                                         \
-                        description,                                  \
-                        declare,                                      \
-                        create)
+  ESTEP_REGISTER_PLUGIN(                                              \
+    ::estep::integrator_registry(), name, description, declare, create)
 
 #endif

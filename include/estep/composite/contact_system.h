@@ -1,8 +1,8 @@
-#ifndef estep_systems_contact_system_h
-#define estep_systems_contact_system_h
+#ifndef estep_composite_contact_system_h
+#define estep_composite_contact_system_h
 
+#include <estep/composite/contact_parameters.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
-#include <estep/systems/contact_parameters.h>
 #include <estep/systems/mechanical_system.h>
 #include <estep/systems/rigid_body_motion.h>
 
@@ -87,7 +87,10 @@ namespace estep
      * PenaltyFlight. Enclosures: one second-order form of the sum about the
      * interval's centre (values and slopes of the parts added at the centre,
      * then the intervals; see LineTaylorForm), intersected with the sum of
-     * the parts' enclosures. value_tolerance(): the sum of the parts'.
+     * the parts' enclosures; with the sum of the parts' bounds on V'' (where
+     * every part has one: the bodies', the penalty's without a kink) and V,
+     * V' at the interval's centre as the sample. value_tolerance(): the sum
+     * of the parts'.
      */
     std::unique_ptr<FreeFlight>
     free_flight(const Vector &q, const Vector &v) const override;

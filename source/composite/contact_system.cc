@@ -1,6 +1,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/contact/boundary_triangles.h>
 #include <estep/contact/first_contact.h>
 #include <estep/contact/penalty_contact.h>
@@ -8,7 +9,6 @@
 #include <estep/contact/triangle_intersection.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
-#include <estep/systems/contact_system.h>
 
 #include <cmath>
 #include <limits>
@@ -98,20 +98,35 @@ namespace estep
        * (LineTaylorForm::from_enclosure()). The result is intersected with the
        * sum of the parts' own enclosures, which is tighter where no slopes
        * cancel (the bodies' enclosures keep the sign of their curvature).
+       *
+       * The enclosure also reports what the search's convexity rules and its
+       * location of crossings use: the sum of the parts' bounds on f'' (the
+       * bodies' enclosures' curvature, the penalty form's C where it has no
+       * kink; unbounded if a part has none), and V and V' at the centre as
+       * value_and_derivative() computes them (the bodies' samples there,
+       * which their enclosures took at the same centre, plus the penalty's
+       * value and slope).
        */
       LineEnclosure
       enclose(const double a, const double b) const override
       {
-        LineTaylorForm form = LineTaylorForm::about_centre_of(a, b);
-        LineEnclosure  sum  = {{0., 0.}, {0., 0.}};
+        LineTaylorForm form      = LineTaylorForm::about_centre_of(a, b);
+        const double   m         = form.centre;
+        LineEnclosure  sum       = {{0., 0.}, {0., 0.}};
+        Interval       curvature = {0., 0.};
+        LineValue      at_m      = {0., 0.};
         for (const auto &f : bodies)
           {
             const LineEnclosure e = f->enclose(a, b);
             sum.value += e.value;
             sum.derivative += e.derivative;
+            curvature += e.curvature;
+            const LineValue at_centre =
+              e.sample_point == m ? e.sample : f->value_and_derivative(m);
+            at_m.value += at_centre.value;
+            at_m.derivative += at_centre.derivative;
             // The round-off of a body's values: its tolerance at s = 0 plus
             // 64 epsilon of the value (the margin of its own enclosures).
-            const LineValue at_centre = f->value_and_derivative(form.centre);
             form += LineTaylorForm::from_enclosure(
               form.centre,
               form.radius,
@@ -119,17 +134,39 @@ namespace estep
               e,
               f->value_tolerance() + 64. * epsilon * std::abs(at_centre.value));
           }
+        if (!std::isfinite(at_m.value))
+          at_m.value = infinity;
         if (penalty_flight)
           {
             const LineTaylorForm p = penalty_flight->taylor_form(a, b);
             const LineEnclosure  e = p.enclosure();
             sum.value += e.value;
             sum.derivative += e.derivative;
+            curvature += e.curvature;
             form += p;
+            // Without candidate pairs on [a, b] the penalty is 0 at m.
+            if (std::isfinite(at_m.value) &&
+                penalty_flight->n_candidate_pairs() > 0)
+              {
+                const auto [value, slope] =
+                  penalty_flight->value_and_derivative(m);
+                at_m.value += value;
+                at_m.derivative += slope;
+              }
           }
         const LineEnclosure combined = form.enclosure();
-        return {intersection(combined.value, sum.value),
-                intersection(combined.derivative, sum.derivative)};
+        LineEnclosure       enclosure;
+        enclosure.value = intersection(combined.value, sum.value);
+        enclosure.derivative =
+          intersection(combined.derivative, sum.derivative);
+        if (std::isfinite(curvature.lower) && std::isfinite(curvature.upper))
+          enclosure.curvature = curvature;
+        if (m >= a && m <= b)
+          {
+            enclosure.sample_point = m;
+            enclosure.sample       = at_m;
+          }
+        return enclosure;
       }
 
       /** The sum of the parts' round-off bounds at the start. */
@@ -476,20 +513,15 @@ namespace estep
     bvh.build(q.data(), q.size());
     std::vector<std::pair<unsigned int, unsigned int>> pairs;
     bvh.find_pairs(pairs);
-    unsigned int       count = 0;
-    contact::Triangle3 T[2];
+    unsigned int count = 0;
     for (const auto &[i, j] : pairs)
       {
         if (!exclusion_groups.empty() &&
             exclusion_groups[i] == exclusion_groups[j])
           continue;
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              T[0][k][d] = q[3 * triangles[i][k] + d];
-              T[1][k][d] = q[3 * triangles[j][k] + d];
-            }
-        if (contact::triangles_intersect(T[0], T[1]))
+        if (contact::triangles_intersect(
+              contact::triangle_at(q.data(), triangles[i]),
+              contact::triangle_at(q.data(), triangles[j])))
           ++count;
       }
     return count;

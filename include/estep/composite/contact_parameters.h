@@ -1,5 +1,5 @@
-#ifndef estep_systems_contact_parameters_h
-#define estep_systems_contact_parameters_h
+#ifndef estep_composite_contact_parameters_h
+#define estep_composite_contact_parameters_h
 
 #include <string>
 

@@ -6,10 +6,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/contact/penalty_contact.h>
 #include <estep/contact/penalty_flight.h>
 #include <estep/fem/ball_mesh.h>
-#include <estep/systems/contact_system.h>
 
 #include <gtest/gtest.h>
 
@@ -217,6 +217,7 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
   std::mt19937_64                        rng(5);
   std::uniform_real_distribution<double> u(0., 1.);
   unsigned int                           n_samples = 0, n_failures = 0;
+  unsigned int                           n_curved = 0, n_curvature_samples = 0;
   for (unsigned int flight_number = 0; flight_number < 4; ++flight_number)
     {
       // Random deformation velocities plus an approach of the two balls.
@@ -231,10 +232,36 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
           const double a     = (limit - width) * u(rng);
           const double b     = a + width;
           const auto   e     = flight->enclose(a, b);
+          // The centre sample is what value_and_derivative() computes there.
+          ASSERT_TRUE(e.sample_point >= a && e.sample_point <= b);
+          const auto at_sample = flight->value_and_derivative(e.sample_point);
+          EXPECT_EQ(e.sample.value, at_sample.value);
+          EXPECT_EQ(e.sample.derivative, at_sample.derivative);
+          const bool curved = std::isfinite(e.curvature.lower) &&
+                              std::isfinite(e.curvature.upper);
+          n_curved += curved;
           for (unsigned int j = 0; j <= 20; ++j)
             {
               const double s  = a + (b - a) * j / 20.;
               const auto   lv = flight->value_and_derivative(s);
+              // V'' by central differences of V' inside the curvature bound.
+              const double delta = 1e-3 * (b - a);
+              if (curved && s - delta >= a && s + delta <= b)
+                {
+                  const double curvature =
+                    (flight->value_and_derivative(s + delta).derivative -
+                     flight->value_and_derivative(s - delta).derivative) /
+                    (2. * delta);
+                  const double slack =
+                    1e-6 * (std::abs(e.curvature.lower) +
+                            std::abs(e.curvature.upper)) +
+                    1e-12 * (std::abs(lv.derivative) + 1.) / delta;
+                  ++n_curvature_samples;
+                  EXPECT_GE(curvature, e.curvature.lower - slack)
+                    << "[" << a << ", " << b << "] s = " << s;
+                  EXPECT_LE(curvature, e.curvature.upper + slack)
+                    << "[" << a << ", " << b << "] s = " << s;
+                }
               ++n_samples;
               if (!e.value.contains(lv.value) ||
                   !e.derivative.contains(lv.derivative))
@@ -251,8 +278,11 @@ TEST(ContactSystem, EnclosuresContainSampledValues)
         }
     }
   std::cout << n_samples << " samples, " << n_failures
-            << " outside their enclosures" << std::endl;
+            << " outside their enclosures; " << n_curved
+            << " enclosures of 100 bound V'' (" << n_curvature_samples
+            << " difference quotients checked)" << std::endl;
   EXPECT_EQ(n_failures, 0u);
+  EXPECT_GT(n_curved, 0u);
 }
 
 TEST(ContactSystem, PenaltyEnclosuresTighten)
@@ -283,40 +313,6 @@ TEST(ContactSystem, PenaltyEnclosuresTighten)
       previous = e.value.width();
     }
   std::cout << std::endl;
-}
-
-TEST(LineTaylorForm, QuadraticAndKink)
-{
-  // f(s) = s^2 on [0, 1]: exact range from the form about 0.5.
-  estep::LineTaylorForm square = estep::LineTaylorForm::about_centre_of(0., 1.);
-  square.value                 = 0.25;
-  square.slope                 = 1.;
-  square.curvature             = {2., 2.};
-  const auto e                 = square.enclosure();
-  // (up to the outward rounding of a few units of round-off)
-  EXPECT_NEAR(e.value.lower, 0., 1e-14);
-  EXPECT_NEAR(e.value.upper, 1., 1e-14);
-  EXPECT_NEAR(e.derivative.lower, 0., 1e-14);
-  EXPECT_NEAR(e.derivative.upper, 2., 1e-14);
-
-  // f(s) = |s - 0.3| + s^2 (a kink: f' jumps by 2): W = [-2, 0] about 0.5.
-  estep::LineTaylorForm kink = estep::LineTaylorForm::about_centre_of(0., 1.);
-  kink.value                 = 0.2 + 0.25;
-  kink.slope                 = 1. + 1.;
-  kink.slope_offset          = {-2., 0.};
-  estep::LineTaylorForm sum  = estep::LineTaylorForm::about_centre_of(0., 1.);
-  sum += kink;
-  sum.curvature = {2., 2.};
-  const auto k  = sum.enclosure();
-  for (unsigned int j = 0; j <= 100; ++j)
-    {
-      const double s = j / 100.;
-      EXPECT_TRUE(k.value.contains(std::abs(s - 0.3) + s * s));
-      EXPECT_TRUE(k.derivative.contains((s < 0.3 ? -1. : 1.) + 2. * s));
-    }
-  // Forms about different intervals do not add.
-  EXPECT_THROW(sum += estep::LineTaylorForm::about_centre_of(0., 2.),
-               std::logic_error);
 }
 
 // Random pairs of triangles moving on straight lines (generic, nearly

@@ -1,13 +1,13 @@
 // Shared construction of the small balls of the contact-system tests.
-#ifndef estep_tests_systems_contact_test_bodies_h
-#define estep_tests_systems_contact_test_bodies_h
+#ifndef estep_tests_composite_contact_test_bodies_h
+#define estep_tests_composite_contact_test_bodies_h
 
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_system.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/materials/neo_hookean.h>
-#include <estep/systems/contact_system.h>
 
 #include <array>
 #include <memory>

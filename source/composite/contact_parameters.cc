@@ -1,7 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <estep/systems/contact_parameters.h>
+#include <estep/composite/contact_parameters.h>
 
 namespace estep
 {

@@ -3,7 +3,7 @@
 // interpenetration, no tunnelling at high speed; the flight enclosures hold
 // sampled values along the penalty collision.
 
-#include <estep/systems/contact_system.h>
+#include <estep/composite/contact_system.h>
 #include <estep/time_integration/energy_stepping.h>
 
 #include <gtest/gtest.h>
