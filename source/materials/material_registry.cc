@@ -56,4 +56,38 @@ namespace estep
       }
     return choice;
   }
+
+
+
+  void
+  declare_lame_constants(dealii::ParameterHandler &prm,
+                         const std::string        &section)
+  {
+    const double max = dealii::Patterns::Double::max_double_value;
+    prm.enter_subsection(section);
+    prm.declare_entry("Lambda",
+                      "0.0100",
+                      dealii::Patterns::Double(0., max),
+                      "Lame constant lambda0 (stress units).");
+    prm.declare_entry("Mu",
+                      "0.0066",
+                      dealii::Patterns::Double(0., max),
+                      "Shear modulus mu0 (stress units); must be positive.");
+    prm.leave_subsection();
+  }
+
+
+
+  LameConstants
+  parse_lame_constants(dealii::ParameterHandler &prm,
+                       const std::string        &section)
+  {
+    prm.enter_subsection(section);
+    const LameConstants constants{prm.get_double("Lambda"),
+                                  prm.get_double("Mu")};
+    prm.leave_subsection();
+    if (!(constants.mu > 0.))
+      throw std::runtime_error(section + "/Mu: must be positive.");
+    return constants;
+  }
 } // namespace estep

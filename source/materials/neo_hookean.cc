@@ -550,29 +550,14 @@ namespace estep
     void
     declare_neo_hookean_parameters(dealii::ParameterHandler &prm)
     {
-      const double max = dealii::Patterns::Double::max_double_value;
-      prm.enter_subsection("Neo-Hookean");
-      prm.declare_entry("Lambda",
-                        "0.0100",
-                        dealii::Patterns::Double(0., max),
-                        "Lame constant lambda0 (stress units).");
-      prm.declare_entry("Mu",
-                        "0.0066",
-                        dealii::Patterns::Double(0., max),
-                        "Shear modulus mu0 (stress units); must be positive.");
-      prm.leave_subsection();
+      declare_lame_constants(prm, "Neo-Hookean");
     }
 
     std::shared_ptr<const Material>
     create_neo_hookean(dealii::ParameterHandler &prm)
     {
-      prm.enter_subsection("Neo-Hookean");
-      const double lambda = prm.get_double("Lambda");
-      const double mu     = prm.get_double("Mu");
-      prm.leave_subsection();
-      if (!(mu > 0.))
-        throw std::runtime_error("Neo-Hookean/Mu: must be positive.");
-      return std::make_shared<NeoHookean>(lambda, mu);
+      const LameConstants c = parse_lame_constants(prm, "Neo-Hookean");
+      return std::make_shared<NeoHookean>(c.lambda, c.mu);
     }
   } // namespace
 } // namespace estep

@@ -265,30 +265,15 @@ namespace estep
     void
     declare_quadratic_volume_parameters(dealii::ParameterHandler &prm)
     {
-      const double max = dealii::Patterns::Double::max_double_value;
-      prm.enter_subsection(quadratic_volume_section);
-      prm.declare_entry("Lambda",
-                        "0.0100",
-                        dealii::Patterns::Double(0., max),
-                        "Lame constant lambda0 (stress units).");
-      prm.declare_entry("Mu",
-                        "0.0066",
-                        dealii::Patterns::Double(0., max),
-                        "Shear modulus mu0 (stress units); must be positive.");
-      prm.leave_subsection();
+      declare_lame_constants(prm, quadratic_volume_section);
     }
 
     std::shared_ptr<const Material>
     create_quadratic_volume(dealii::ParameterHandler &prm)
     {
-      prm.enter_subsection(quadratic_volume_section);
-      const double lambda = prm.get_double("Lambda");
-      const double mu     = prm.get_double("Mu");
-      prm.leave_subsection();
-      if (!(mu > 0.))
-        throw std::runtime_error(std::string(quadratic_volume_section) +
-                                 "/Mu: must be positive.");
-      return std::make_shared<QuadraticVolumeNeoHookean>(lambda, mu);
+      const LameConstants c =
+        parse_lame_constants(prm, quadratic_volume_section);
+      return std::make_shared<QuadraticVolumeNeoHookean>(c.lambda, c.mu);
     }
   } // namespace
 } // namespace estep

@@ -49,7 +49,6 @@ namespace estep
         MeshDescription::declare_parameters(prm);
         prm.leave_subsection();
 
-
         prm.enter_subsection("Initial velocity");
         {
           prm.declare_entry(

@@ -47,6 +47,26 @@ namespace estep
   MaterialChoice
   parse_material_parameters(dealii::ParameterHandler &prm,
                             const std::string        &section);
+
+  /** The constants lambda0 >= 0 and mu0 > 0 of a material parametrised by
+   * its small-strain Lame constants (the neo-Hookean solids). */
+  struct LameConstants
+  {
+    double lambda;
+    double mu;
+  };
+
+  /** Declare `Lambda` and `Mu` in the subsection @p section of the current
+   * one. */
+  void
+  declare_lame_constants(dealii::ParameterHandler &prm,
+                         const std::string        &section);
+
+  /** Read what declare_lame_constants() declared; throws
+   * std::runtime_error unless Mu is positive. */
+  LameConstants
+  parse_lame_constants(dealii::ParameterHandler &prm,
+                       const std::string        &section);
 } // namespace estep
 
 /**
