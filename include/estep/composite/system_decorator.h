@@ -1,0 +1,73 @@
+#ifndef estep_composite_system_decorator_h
+#define estep_composite_system_decorator_h
+
+#include <estep/systems/mechanical_system.h>
+
+#include <memory>
+
+namespace estep
+{
+  /**
+   * A MechanicalSystem made from another one (the base) by adding one thing:
+   * a potential term (gravity), constraints (rigid obstacles), or a change of
+   * coordinates (supports). Every function forwards to the base; a decorator
+   * overrides what it changes. Decorators stack: a scene is its bodies in
+   * contact, decorated by obstacles, gravity and supports.
+   */
+  class SystemDecorator : public MechanicalSystem
+  {
+  public:
+    /** @p base must not be null. */
+    explicit SystemDecorator(std::shared_ptr<const MechanicalSystem> base);
+
+    /** The decorated system. */
+    const MechanicalSystem &
+    base() const;
+
+    std::string
+    name() const override;
+
+    unsigned int
+    spatial_dimension() const override;
+
+    unsigned int
+    n_dofs() const override;
+
+    const Vector &
+    inverse_mass() const override;
+
+    double
+    energy(const Vector &q) const override;
+
+    void
+    gradient(const Vector &q, Vector &g) const override;
+
+    std::unique_ptr<FreeFlight>
+    free_flight(const Vector &q, const Vector &v) const override;
+
+    std::optional<ConstraintEvent>
+    first_constraint_event(const Vector &q,
+                           const Vector &v,
+                           const double  s_max) const override;
+
+    bool
+    has_hessian() const override;
+
+    const dealii::SparsityPattern &
+    hessian_sparsity() const override;
+
+    void
+    hessian(const Vector &q, dealii::SparseMatrix<double> &H) const override;
+
+    std::vector<std::string>
+    observable_names() const override;
+
+    std::vector<double>
+    observables(const Vector &q, const Vector &v) const override;
+
+  protected:
+    std::shared_ptr<const MechanicalSystem> base_system;
+  };
+} // namespace estep
+
+#endif

@@ -1,0 +1,129 @@
+#include <estep/composite/system_decorator.h>
+
+#include <stdexcept>
+
+namespace estep
+{
+  SystemDecorator::SystemDecorator(
+    std::shared_ptr<const MechanicalSystem> base)
+    : base_system(std::move(base))
+  {
+    if (!base_system)
+      throw std::invalid_argument("SystemDecorator: no base system.");
+  }
+
+
+
+  const MechanicalSystem &
+  SystemDecorator::base() const
+  {
+    return *base_system;
+  }
+
+
+
+  std::string
+  SystemDecorator::name() const
+  {
+    return base_system->name();
+  }
+
+
+
+  unsigned int
+  SystemDecorator::spatial_dimension() const
+  {
+    return base_system->spatial_dimension();
+  }
+
+
+
+  unsigned int
+  SystemDecorator::n_dofs() const
+  {
+    return base_system->n_dofs();
+  }
+
+
+
+  const Vector &
+  SystemDecorator::inverse_mass() const
+  {
+    return base_system->inverse_mass();
+  }
+
+
+
+  double
+  SystemDecorator::energy(const Vector &q) const
+  {
+    return base_system->energy(q);
+  }
+
+
+
+  void
+  SystemDecorator::gradient(const Vector &q, Vector &g) const
+  {
+    base_system->gradient(q, g);
+  }
+
+
+
+  std::unique_ptr<FreeFlight>
+  SystemDecorator::free_flight(const Vector &q, const Vector &v) const
+  {
+    return base_system->free_flight(q, v);
+  }
+
+
+
+  std::optional<ConstraintEvent>
+  SystemDecorator::first_constraint_event(const Vector &q,
+                                          const Vector &v,
+                                          const double  s_max) const
+  {
+    return base_system->first_constraint_event(q, v, s_max);
+  }
+
+
+
+  bool
+  SystemDecorator::has_hessian() const
+  {
+    return base_system->has_hessian();
+  }
+
+
+
+  const dealii::SparsityPattern &
+  SystemDecorator::hessian_sparsity() const
+  {
+    return base_system->hessian_sparsity();
+  }
+
+
+
+  void
+  SystemDecorator::hessian(const Vector                 &q,
+                           dealii::SparseMatrix<double> &H) const
+  {
+    base_system->hessian(q, H);
+  }
+
+
+
+  std::vector<std::string>
+  SystemDecorator::observable_names() const
+  {
+    return base_system->observable_names();
+  }
+
+
+
+  std::vector<double>
+  SystemDecorator::observables(const Vector &q, const Vector &v) const
+  {
+    return base_system->observables(q, v);
+  }
+} // namespace estep
