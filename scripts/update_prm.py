@@ -5,7 +5,8 @@
 
 The entries that moved (estep names them when it reads an old file): the energy-stepping and
 time-step entries went into the integrators' own subsections, the material into the subsection
-Material, the field output, H1 norm and progress entries into Postprocessors. Comments are kept
+Material, the field output, H1 norm and progress entries into Postprocessors; the mesh type
+'seed cube' is now called 'box'. Comments are kept
 with the entry or subsection they precede; the layout is re-indented by two spaces per level.
 """
 import argparse
@@ -96,6 +97,9 @@ def update(root):
     for path, item in entries(root):
         if path == ("Time integration", "Method"):
             method = item[1]
+    for path, item in entries(root):
+        if path[-2:] == ("Mesh", "Type") and item[1] == "seed cube":
+            item[1] = "box"
     postprocessors = list(DEFAULT_POSTPROCESSORS)
     moves = []
     for path, item in list(entries(root)):

@@ -217,16 +217,43 @@ namespace estep
         }
     }
 
-    /** Load the plugin libraries, declare every parameter, then read the
-     * input file and the overrides, if any. */
+    /** Declare every parameter. */
+    void
+    declare_parameters(dealii::ParameterHandler &prm)
+    {
+      RunParameters::declare_parameters(prm);
+      declare_problem_parameters(prm);
+    }
+
+    /**
+     * Load the plugin libraries, declare every parameter, then read the input
+     * file and the overrides, if any. Declarations may depend on values
+     * (e.g. `Number of bodies` sizes a scene's body subsections): the
+     * parameters are declared once with their defaults, the input is read
+     * leniently, they are declared again with what it set, and the input is
+     * read again, strictly.
+     */
     void
     read_parameters(const CommandLine &command, dealii::ParameterHandler &prm)
     {
       if (!command.input_file.empty())
         check_input_file(command.input_file);
       load_plugin_libraries(command);
-      RunParameters::declare_parameters(prm);
-      declare_problem_parameters(prm);
+      declare_parameters(prm);
+      if (command.input_file.empty() && command.overrides.empty())
+        return;
+      if (!command.input_file.empty())
+        read_input_file(prm, command.input_file, true);
+      for (const std::string &text : command.overrides)
+        try
+          {
+            apply_override(prm, text);
+          }
+        catch (const std::exception &)
+          {
+            // Reported by the strict reading below.
+          }
+      declare_parameters(prm);
       if (!command.input_file.empty())
         read_input_file(prm, command.input_file);
       for (const std::string &text : command.overrides)

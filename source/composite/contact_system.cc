@@ -463,6 +463,19 @@ namespace estep
 
 
 
+  void
+  ContactSystem::body_state(const Vector      &q,
+                            const Vector      &v,
+                            const unsigned int b,
+                            Vector            &q_b,
+                            Vector            &v_b) const
+  {
+    q_b = extract(q, b);
+    v_b = extract(v, b);
+  }
+
+
+
   Vector
   ContactSystem::extract(const Vector &x, const unsigned int b) const
   {

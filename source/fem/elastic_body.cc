@@ -474,6 +474,76 @@ namespace estep
   }
 
   void
+  ElasticBody::cell_stresses(const Vector        &q,
+                             std::vector<double> &cauchy,
+                             std::vector<double> &von_mises) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    cauchy.resize(9 * std::size_t(data.n_cells));
+    von_mises.resize(data.n_cells);
+    const double c = body_material->quadratic_modulus();
+    for (unsigned int e = 0; e < data.n_cells; ++e)
+      {
+        double F[9], C[9];
+        internal::deformation_gradient(q.data(), data, e, F);
+        internal::cofactor(F, C);
+        const double J     = internal::determinant(F, C);
+        const double df    = body_material->volumetric_derivative(J);
+        double      *sigma = &cauchy[9 * std::size_t(e)];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              double FFt = 0.;
+              for (unsigned int k = 0; k < 3; ++k)
+                FFt += F[3 * i + k] * F[3 * j + k];
+              sigma[3 * i + j] = (i == j ? df : 0.) + c / J * FFt;
+            }
+        const double mean = (sigma[0] + sigma[4] + sigma[8]) / 3.;
+        double       ss   = 0.;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double s = sigma[3 * i + j] - (i == j ? mean : 0.);
+              ss += s * s;
+            }
+        von_mises[e] = std::sqrt(1.5 * ss);
+      }
+  }
+
+
+
+  unsigned int
+  ElasticBody::n_bodies() const
+  {
+    return 1;
+  }
+
+
+
+  const ElasticBody &
+  ElasticBody::body(const unsigned int b) const
+  {
+    AssertIndexRange(b, 1);
+    return *this;
+  }
+
+
+
+  void
+  ElasticBody::body_state(const Vector      &q,
+                          const Vector      &v,
+                          const unsigned int b,
+                          Vector            &q_b,
+                          Vector            &v_b) const
+  {
+    AssertIndexRange(b, 1);
+    q_b = q;
+    v_b = v;
+  }
+
+
+
+  void
   ElasticBody::track_point(const std::string           &name,
                            const std::array<double, 3> &X)
   {

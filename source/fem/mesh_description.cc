@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/exception_text.h>
+#include <estep/fem/ball_mesh.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
 
@@ -69,26 +70,36 @@ namespace estep
     prm.declare_entry(
       "Type",
       defaults.type,
-      dealii::Patterns::Selection("seed cube|deal.II|deal.II 24|gmsh"),
-      "How the tetrahedral mesh is made: 'seed cube' (a box divided into "
-      "n^3 hexahedra of 24 tetrahedra each), 'deal.II' (a deal.II hexahedral "
-      "generator converted with convert_hypercube_to_simplex_mesh), 'deal.II 24' "
-      "(the same generator with every hexahedron split into 24 tetrahedra, as "
-      "in 'seed cube'), or 'gmsh' (a .msh file of tetrahedra).");
+      dealii::Patterns::Selection("box|ball|deal.II|deal.II 24|gmsh"),
+      "How the tetrahedral mesh is made: 'box' (a box divided into n^3 "
+      "hexahedra of 24 tetrahedra each), 'ball' (a ball of radius R about the "
+      "origin meshed by gmsh), 'deal.II' (a deal.II hexahedral generator "
+      "converted with convert_hypercube_to_simplex_mesh), 'deal.II 24' (the "
+      "same generator with every hexahedron split into 24 tetrahedra, as in "
+      "'box'), or 'gmsh' (a .msh file of tetrahedra).");
     prm.declare_entry(
       "Subdivisions",
       std::to_string(defaults.n_subdivisions),
       dealii::Patterns::Integer(1),
-      "seed cube: number of hexahedra per direction (8: the spinning cube's "
+      "box: number of hexahedra per direction (8: the spinning cube's "
       "mesh of 12,288 tetrahedra).");
     prm.declare_entry("Lower corner",
                       print_point(defaults.lower),
                       dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
-                      "seed cube: lower corner of the box (length).");
+                      "box: its lower corner (length).");
     prm.declare_entry("Upper corner",
                       print_point(defaults.upper),
                       dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
-                      "seed cube: upper corner of the box (length).");
+                      "box: its upper corner (length).");
+    prm.declare_entry("Radius",
+                      std::to_string(defaults.radius),
+                      dealii::Patterns::Double(0.),
+                      "ball: its radius (length).");
+    prm.declare_entry("Mesh size",
+                      std::to_string(defaults.mesh_size),
+                      dealii::Patterns::Double(0.),
+                      "ball: the target edge length relative to the radius "
+                      "(0.3: 898 tetrahedra).");
     prm.declare_entry(
       "Generator",
       defaults.generator,
@@ -127,6 +138,8 @@ namespace estep
     n_subdivisions = prm.get_integer("Subdivisions");
     lower          = parse_point(prm.get("Lower corner"), "Lower corner");
     upper          = parse_point(prm.get("Upper corner"), "Upper corner");
+    radius         = prm.get_double("Radius");
+    mesh_size      = prm.get_double("Mesh size");
     generator      = prm.get("Generator");
     arguments      = prm.get("Generator arguments");
     n_refinements  = prm.get_integer("Refinements");
@@ -137,8 +150,15 @@ namespace estep
   void
   make_mesh(const MeshDescription &d, dealii::Triangulation<3, 3> &tria)
   {
-    if (d.type == "seed cube")
+    if (d.type == "box")
       make_seed_cube_mesh(tria, d.n_subdivisions, d.lower, d.upper);
+    else if (d.type == "ball")
+      {
+        AssertThrow(d.radius > 0. && d.mesh_size > 0.,
+                    dealii::ExcMessage(
+                      "Mesh: a ball needs a positive radius and mesh size."));
+        make_ball_mesh(tria, d.mesh_size, d.radius);
+      }
     else if (d.type == "deal.II" || d.type == "deal.II 24")
       {
         dealii::Triangulation<3, 3> hex;
@@ -180,7 +200,7 @@ namespace estep
       AssertThrow(false,
                   dealii::ExcMessage(
                     "Mesh: unknown type '" + d.type +
-                    "' (known: seed cube, deal.II, deal.II 24, gmsh)."));
+                    "' (known: box, ball, deal.II, deal.II 24, gmsh)."));
 
     if (d.shift[0] != 0. || d.shift[1] != 0. || d.shift[2] != 0.)
       dealii::GridTools::shift(

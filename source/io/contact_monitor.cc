@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/composite/contact_system.h>
+#include <estep/composite/scene.h>
 #include <estep/io/contact_monitor.h>
 
 #include <cmath>
@@ -39,19 +40,47 @@ namespace estep
                                  const TimeIntegrator &integrator,
                                  const Vector         &q0,
                                  const Vector         &v0)
+    : ContactMonitor(
+        system,
+        integrator,
+        q0,
+        v0,
+        [](const Vector &q, const Vector &v, Vector &qc, Vector &vc) {
+          qc = q;
+          vc = v;
+        })
+  {}
+
+
+
+  ContactMonitor::ContactMonitor(const ContactSystem  &system,
+                                 const TimeIntegrator &integrator,
+                                 const Vector         &q,
+                                 const Vector         &v,
+                                 StateMap              to_contact)
     : system(system)
     , integrator(integrator)
-    , q0(q0)
-    , v0(v0)
-  {}
+    , to_contact(std::move(to_contact))
+  {
+    this->to_contact(q, v, q0, v0);
+  }
+
+
+
+  void
+  ContactMonitor::current_state(Vector &q, Vector &v) const
+  {
+    to_contact(integrator.position(), integrator.velocity(), q, v);
+  }
 
 
 
   void
   ContactMonitor::add_to_summary(JsonObject &out) const
   {
-    out.add("contact",
-            summary(q0, v0, integrator.position(), integrator.velocity()));
+    Vector q, v;
+    current_state(q, v);
+    out.add("contact", summary(q0, v0, q, v));
   }
 
 
@@ -59,7 +88,9 @@ namespace estep
   std::string
   ContactMonitor::final_report() const
   {
-    return report(q0, v0, integrator.position(), integrator.velocity());
+    Vector q, v;
+    current_state(q, v);
+    return report(q0, v0, q, v);
   }
 
 
@@ -67,8 +98,9 @@ namespace estep
   void
   ContactMonitor::after_step(const TimeIntegrator &integrator)
   {
-    const unsigned int pairs =
-      system.n_intersecting_pairs(integrator.position());
+    Vector q, v;
+    current_state(q, v);
+    const unsigned int  pairs   = system.n_intersecting_pairs(q);
     const std::uint64_t events  = constraint_events(integrator);
     const bool          contact = pairs > 0 || events > constraint_events_seen;
     constraint_events_seen      = events;
@@ -189,14 +221,20 @@ namespace estep
     create_contact_monitor(dealii::ParameterHandler &,
                            const PostprocessorContext &run)
     {
-      const auto *contact = dynamic_cast<const ContactSystem *>(
-        &run.integrator.mechanical_system());
-      if (contact == nullptr)
-        return nullptr;
-      return std::make_unique<ContactMonitor>(*contact,
-                                              run.integrator,
-                                              run.q0,
-                                              run.v0);
+      const MechanicalSystem &system = run.integrator.mechanical_system();
+      if (const auto *contact = dynamic_cast<const ContactSystem *>(&system))
+        return std::make_unique<ContactMonitor>(*contact,
+                                                run.integrator,
+                                                run.q0,
+                                                run.v0);
+      if (const auto *scene = dynamic_cast<const Scene *>(&system);
+          scene != nullptr && scene->contact_system() != nullptr)
+        return std::make_unique<ContactMonitor>(*scene->contact_system(),
+                                                run.integrator,
+                                                run.q0,
+                                                run.v0,
+                                                scene->state_map());
+      return nullptr;
     }
   } // namespace
 } // namespace estep

@@ -24,12 +24,12 @@ namespace estep
 {
   struct FieldOutput::Implementation
   {
-    Implementation(const ElasticBody &body,
-                   const std::string &directory,
-                   const Format       format,
-                   const double       start_time,
-                   const double       interval)
-      : body(body)
+    Implementation(const ElasticBodies &bodies,
+                   const std::string   &directory,
+                   const Format         format,
+                   const double         start_time,
+                   const double         interval)
+      : bodies(bodies)
       , directory(directory)
       , format(format)
       , interval(interval)
@@ -37,24 +37,27 @@ namespace estep
       , mapping(dealii::FE_SimplexP<3>(1))
     {
       if (format == Format::vtu)
-        {
-          const P1CellData         &cells = body.cell_data();
-          std::vector<unsigned int> tetrahedra(4 * std::size_t(cells.n_cells));
-          for (unsigned int e = 0; e < cells.n_cells; ++e)
-            for (unsigned int a = 0; a < 4; ++a)
-              tetrahedra[4 * e + a] = cells.point[a][e];
-          vtu = std::make_unique<VtuFile>(cells.reference_position, tetrahedra);
-        }
+        for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
+          {
+            const P1CellData         &cells = bodies.body(b).cell_data();
+            std::vector<unsigned int> tetrahedra(4 *
+                                                 std::size_t(cells.n_cells));
+            for (unsigned int e = 0; e < cells.n_cells; ++e)
+              for (unsigned int a = 0; a < 4; ++a)
+                tetrahedra[4 * e + a] = cells.point[a][e];
+            vtu.push_back(
+              std::make_unique<VtuFile>(cells.reference_position, tetrahedra));
+          }
     }
 
-    const ElasticBody          &body;
+    const ElasticBodies        &bodies;
     const std::filesystem::path directory;
     const Format                format;
     const double                interval;
     double                      next_time;
     const dealii::MappingFE<3>  mapping;
-    /** The mesh, encoded once (format vtu). */
-    std::unique_ptr<VtuFile>                    vtu;
+    /** Each body's mesh, encoded once (format vtu). */
+    std::vector<std::unique_ptr<VtuFile>>       vtu;
     std::vector<std::pair<double, std::string>> pvd_records;
     /** Snapshots not yet in solution.pvd, and when it was last written. */
     bool                                  pvd_pending = false;
@@ -74,12 +77,12 @@ namespace estep
 
 
 
-  FieldOutput::FieldOutput(const ElasticBody &body,
-                           const std::string &directory,
-                           const Format       format,
-                           const double       start_time,
-                           const double       interval)
-    : implementation(std::make_unique<Implementation>(body,
+  FieldOutput::FieldOutput(const ElasticBodies &bodies,
+                           const std::string   &directory,
+                           const Format         format,
+                           const double         start_time,
+                           const double         interval)
+    : implementation(std::make_unique<Implementation>(bodies,
                                                       directory,
                                                       format,
                                                       start_time,
@@ -152,41 +155,69 @@ namespace estep
   void
   FieldOutput::write(const Snapshot &snapshot)
   {
-    Implementation    &self  = *implementation;
-    const ElasticBody &body  = self.body;
-    const P1CellData  &cells = body.cell_data();
-
-    std::vector<double> displacement(snapshot.q.begin(), snapshot.q.end()),
-      velocity(snapshot.v.begin(), snapshot.v.end());
-    for (unsigned int k = 0; k < displacement.size(); ++k)
-      displacement[k] -= cells.reference_position[k];
-    std::vector<double> J, W;
-    body.cell_fields(snapshot.q, J, W);
-
-    const unsigned int n = n_snapshots();
+    Implementation    &self     = *implementation;
+    const unsigned int n        = n_snapshots();
+    const unsigned int n_bodies = self.bodies.n_bodies();
     char               name[64];
+    Vector             q, v;
     if (self.format == Format::vtu)
       {
-        std::snprintf(name, sizeof(name), "fields/solution-%05u.vtu", n);
-        // Written in place: a new file that the series lists only once it is
-        // complete. A file of an earlier run is removed first: renaming over
-        // it or truncating it would make ext4 flush the new one to disk
-        // (seconds per run on a busy disk).
-        {
-          std::filesystem::remove(self.directory / name);
-          std::ofstream out(self.directory / name);
-          self.vtu->write(out,
-                          snapshot.t,
-                          n,
-                          {{"displacement", 3, &displacement},
-                           {"velocity", 3, &velocity}},
-                          {{"J", 1, &J}, {"strain_energy_density", 1, &W}});
-          out.close();
-          if (!out)
-            throw std::runtime_error("Field output: cannot write <" +
-                                     (self.directory / name).string() + ">.");
-        }
-        self.pvd_records.emplace_back(snapshot.t, name);
+        // One file per body, written in place: a new file that the series
+        // lists only once it is complete. A file of an earlier run is
+        // removed first: renaming over it or truncating it would make ext4
+        // flush the new one to disk (seconds per run on a busy disk).
+        std::vector<std::string> pieces;
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          {
+            const ElasticBody &body = self.bodies.body(b);
+            self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
+            std::vector<double> displacement(q.begin(), q.end()),
+              velocity(v.begin(), v.end()), J, W, stress, von_mises;
+            for (unsigned int k = 0; k < displacement.size(); ++k)
+              displacement[k] -= body.cell_data().reference_position[k];
+            body.cell_fields(q, J, W);
+            body.cell_stresses(q, stress, von_mises);
+            if (n_bodies == 1)
+              std::snprintf(name, sizeof(name), "solution-%05u.vtu", n);
+            else
+              std::snprintf(
+                name, sizeof(name), "solution-%05u-%u.vtu", n, b + 1);
+            pieces.push_back(name);
+            const std::filesystem::path file = self.directory / "fields" / name;
+            std::filesystem::remove(file);
+            std::ofstream out(file);
+            self.vtu[b]->write(out,
+                               snapshot.t,
+                               n,
+                               {{"displacement", 3, &displacement},
+                                {"velocity", 3, &velocity}},
+                               {{"J", 1, &J},
+                                {"strain_energy_density", 1, &W},
+                                {"cauchy_stress", 9, &stress},
+                                {"von_mises_stress", 1, &von_mises}});
+            out.close();
+            if (!out)
+              throw std::runtime_error("Field output: cannot write <" +
+                                       file.string() + ">.");
+          }
+        std::string series_entry = "fields/" + pieces[0];
+        if (n_bodies > 1)
+          {
+            // The bodies of one snapshot as a multiblock data set.
+            std::snprintf(name, sizeof(name), "solution-%05u.vtm", n);
+            std::ostringstream vtm;
+            vtm << "<?xml version=\"1.0\"?>\n<VTKFile "
+                   "type=\"vtkMultiBlockDataSet\" version=\"1.0\" "
+                   "byte_order=\"LittleEndian\">\n  <vtkMultiBlockDataSet>\n";
+            for (unsigned int b = 0; b < n_bodies; ++b)
+              vtm << "    <DataSet index=\"" << b << "\" name=\"body " << b + 1
+                  << "\" file=\"" << pieces[b] << "\"/>\n";
+            vtm << "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
+            write_file_atomically((self.directory / "fields" / name).string(),
+                                  vtm.str());
+            series_entry = std::string("fields/") + name;
+          }
+        self.pvd_records.emplace_back(snapshot.t, series_entry);
         self.pvd_pending = true;
         if (self.pvd_records.size() == 1 ||
             std::chrono::steady_clock::now() - self.pvd_written >=
@@ -195,7 +226,14 @@ namespace estep
         return;
       }
 
-    // HDF5/XDMF through deal.II's DataOut.
+    // HDF5/XDMF through deal.II's DataOut (one body).
+    const ElasticBody &body = self.bodies.body(0);
+    self.bodies.body_state(snapshot.q, snapshot.v, 0, q, v);
+    std::vector<double> displacement(q.begin(), q.end()),
+      velocity(v.begin(), v.end()), J, W;
+    for (unsigned int k = 0; k < displacement.size(); ++k)
+      displacement[k] -= body.cell_data().reference_position[k];
+    body.cell_fields(q, J, W);
     dealii::Vector<double> displacement_vector(displacement.begin(),
                                                displacement.end()),
       velocity_vector(velocity.begin(), velocity.end()),
@@ -265,11 +303,17 @@ namespace estep
       const std::string format   = prm.get("Format");
       prm.leave_subsection();
       const MechanicalSystem &system = run.integrator.mechanical_system();
-      const auto             *body = dynamic_cast<const ElasticBody *>(&system);
-      if (body == nullptr)
+      const auto *bodies = dynamic_cast<const ElasticBodies *>(&system);
+      if (bodies == nullptr)
         throw std::runtime_error("Postprocessors/List: field output: the "
                                  "system <" +
                                  system.name() + "> has no fields to write.");
+      if (format == "hdf5" && bodies->n_bodies() > 1)
+        throw std::runtime_error(
+          "Postprocessors/Field output/Format: hdf5 writes one body, and the "
+          "system <" +
+          system.name() + "> has " + std::to_string(bodies->n_bodies()) +
+          "; choose vtu.");
       if (!(interval > 0.))
         throw std::runtime_error(
           "Postprocessors/Field output/Interval: must be positive.");
@@ -277,7 +321,7 @@ namespace estep
         throw std::runtime_error(
           "Postprocessors/Field output/Interval: would write more than "
           "100000 snapshots over the run; choose a larger interval.");
-      return std::make_unique<FieldOutput>(*body,
+      return std::make_unique<FieldOutput>(*bodies,
                                            run.output_directory,
                                            format == "hdf5" ?
                                              FieldOutput::Format::hdf5 :

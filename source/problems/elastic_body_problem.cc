@@ -1,4 +1,3 @@
-#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
@@ -8,6 +7,7 @@
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>
 #include <estep/materials/material_registry.h>
+#include <estep/problems/parsed_vector_field.h>
 #include <estep/problems/problem.h>
 
 #include <iostream>
@@ -136,59 +136,12 @@ namespace estep
           parse_point(prm.get("Angular velocity"), "Angular velocity"),
           parse_point(prm.get("Rotation centre"), "Rotation centre"));
       else
-        {
-          dealii::FunctionParser<3> velocity(3);
-          const std::string         expression = prm.get("Function expression");
-          std::map<std::string, double> constants;
-          for (const std::string &item : dealii::Utilities::split_string_list(
-                 prm.get("Function constants"), ','))
-            {
-              const auto parts =
-                dealii::Utilities::split_string_list(item, '=');
-              if (parts.size() != 2)
-                throw std::runtime_error(
-                  "Elastic body/Initial velocity/Function constants: <" + item +
-                  "> is not of the form name=value.");
-              constants[parts[0]] =
-                dealii::Utilities::string_to_double(parts[1]);
-            }
-          // deal.II parses on the first evaluation and prints its diagnosis
-          // of a bad expression (several lines) before it throws: keep the
-          // diagnosis and say it in one line naming the entry.
-          std::ostringstream    diagnosis;
-          std::streambuf *const cerr_buffer =
-            std::cerr.rdbuf(diagnosis.rdbuf());
-          problem.v0.reinit(problem.q0.size());
-          try
-            {
-              velocity.initialize(
-                "x,y,z",
-                dealii::Utilities::split_string_list(expression, ';'),
-                constants);
-              for (unsigned int i = 0; i < body->n_vertices(); ++i)
-                {
-                  const dealii::Point<3> X(problem.q0[3 * i],
-                                           problem.q0[3 * i + 1],
-                                           problem.q0[3 * i + 2]);
-                  for (unsigned int c = 0; c < 3; ++c)
-                    problem.v0[3 * i + c] = velocity.value(X, c);
-                }
-              std::cerr.rdbuf(cerr_buffer);
-            }
-          catch (const dealii::ExceptionBase &)
-            {
-              std::cerr.rdbuf(cerr_buffer);
-              std::string        message;
-              std::istringstream lines(diagnosis.str());
-              for (std::string line; std::getline(lines, line);)
-                if (line.rfind("Message:", 0) == 0)
-                  message = dealii::Utilities::trim(line.substr(8));
-              throw std::runtime_error(
-                "Elastic body/Initial velocity/Function expression: <" +
-                expression + "> cannot be evaluated" +
-                (message.empty() ? std::string(".") : ": " + message + "."));
-            }
-        }
+        problem.v0 = evaluate_vector_field(
+          "Elastic body/Initial velocity/Function expression",
+          prm.get("Function expression"),
+          "x,y,z",
+          prm.get("Function constants"),
+          problem.q0);
       prm.leave_subsection();
       prm.leave_subsection();
 

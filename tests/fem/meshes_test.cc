@@ -149,7 +149,7 @@ namespace
     dealii::ParameterHandler prm;
     estep::MeshDescription::declare_parameters(prm);
     prm.parse_input_from_string(
-      "set Type = seed cube\nset Subdivisions = 3\n"
+      "set Type = box\nset Subdivisions = 3\n"
       "set Upper corner = 2, 1, 1\nset Shift = 0, 0, 5\n");
     estep::MeshDescription d;
     d.parse_parameters(prm);

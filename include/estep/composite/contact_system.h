@@ -3,6 +3,7 @@
 
 #include <estep/composite/contact_parameters.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
+#include <estep/fem/elastic_bodies.h>
 #include <estep/systems/mechanical_system.h>
 #include <estep/systems/rigid_body_motion.h>
 
@@ -48,7 +49,7 @@ namespace estep
    *
    * Not thread-safe (caches in the bodies and the contact term).
    */
-  class ContactSystem : public MechanicalSystem
+  class ContactSystem : public MechanicalSystem, public ElasticBodies
   {
   public:
     /**
@@ -119,11 +120,19 @@ namespace estep
 
     /** Number of bodies. */
     unsigned int
-    n_bodies() const;
+    n_bodies() const override;
 
     /** Body @p b. */
     const ElasticBody &
-    body(const unsigned int b) const;
+    body(const unsigned int b) const override;
+
+    /** extract() of @p q and @p v. */
+    void
+    body_state(const Vector      &q,
+               const Vector      &v,
+               const unsigned int b,
+               Vector            &q_b,
+               Vector            &v_b) const override;
 
     /** The global number of body @p b's first point. */
     unsigned int

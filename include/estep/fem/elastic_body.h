@@ -1,6 +1,7 @@
 #ifndef estep_fem_elastic_body_h
 #define estep_fem_elastic_body_h
 
+#include <estep/fem/elastic_bodies.h>
 #include <estep/fem/p1_cell_data.h>
 #include <estep/materials/material.h>
 #include <estep/systems/mechanical_system.h>
@@ -47,7 +48,7 @@ namespace estep
    *
    * Not thread-safe: energy() uses an internal scratch array.
    */
-  class ElasticBody : public MechanicalSystem
+  class ElasticBody : public MechanicalSystem, public ElasticBodies
   {
   public:
     /**
@@ -150,6 +151,32 @@ namespace estep
      * q follows. */
     const dealii::DoFHandler<3, 3> &
     dof_handler() const;
+
+    /** @name One body seen as ElasticBodies (for field output). @{ */
+    unsigned int
+    n_bodies() const override;
+
+    const ElasticBody &
+    body(const unsigned int b) const override;
+
+    void
+    body_state(const Vector      &q,
+               const Vector      &v,
+               const unsigned int b,
+               Vector            &q_b,
+               Vector            &v_b) const override;
+    /** @} */
+
+    /**
+     * The Cauchy stress of every cell at the configuration @p q, for output:
+     * @p cauchy holds 9 entries per cell (row-major), sigma = f'(J) I + c/J F
+     * F^T (from P = f'(J) J F^-T + c F), and @p von_mises the von Mises stress
+     * (3/2 s:s)^(1/2) of its deviator s. Every cell must have J > 0.
+     */
+    void
+    cell_stresses(const Vector        &q,
+                  std::vector<double> &cauchy,
+                  std::vector<double> &von_mises) const;
 
     /**
      * Per-cell fields of the configuration @p q, for output: the volume ratio

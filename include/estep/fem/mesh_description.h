@@ -17,7 +17,7 @@ namespace estep
    * A tetrahedral mesh described by a type name and parameters, as read from a
    * parameter file. make_mesh() builds it. The types:
    *
-   * - "seed cube": a cube of hexahedra split into tetrahedra
+   * - "box": a box of hexahedra split into tetrahedra
    * (make_seed_cube_mesh()): the box
    * [lower, upper] divided into n_subdivisions^3 hexahedra, 24 tetrahedra each
    * (n_subdivisions = 8 on the unit cube: 12,288 cells, 2,969 vertices). Uses
@@ -28,7 +28,9 @@ namespace estep
    *   GridGenerator::convert_hypercube_to_simplex_mesh (curved manifolds are
    * not kept: the conversion sees the refined vertices).
    * - "deal.II 24": the same generator and refinements, split with
-   *   split_hexahedra_into_24_tetrahedra() (as "seed cube").
+   *   split_hexahedra_into_24_tetrahedra() (as "box").
+   * - "ball": a ball of the given radius about the origin, meshed by gmsh
+   *   with the given mesh size relative to the radius (make_ball_mesh()).
    * - "gmsh": a gmsh .msh file (formats 2 and 4 that deal.II's GridIn::read_msh
    * reads), of tetrahedra; uses file_name.
    *
@@ -37,17 +39,23 @@ namespace estep
    */
   struct MeshDescription
   {
-    /** "seed cube", "deal.II", "deal.II 24" or "gmsh". */
-    std::string type = "seed cube";
+    /** "box", "ball", "deal.II", "deal.II 24" or "gmsh". */
+    std::string type = "box";
 
-    /** seed cube: hexahedra per direction (>= 1). */
+    /** box: hexahedra per direction (>= 1). */
     unsigned int n_subdivisions = 8;
 
-    /** seed cube: lower corner of the box. */
+    /** box: its lower corner. */
     std::array<double, 3> lower = {{0., 0., 0.}};
 
-    /** seed cube: upper corner of the box. */
+    /** box: its upper corner. */
     std::array<double, 3> upper = {{1., 1., 1.}};
+
+    /** ball: its radius. */
+    double radius = 1.;
+
+    /** ball: the target edge length relative to the radius. */
+    double mesh_size = 0.3;
 
     /** deal.II types: name of the GridGenerator function (e.g. "hyper_ball").
      */

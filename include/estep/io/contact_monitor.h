@@ -5,6 +5,7 @@
 #include <estep/io/postprocessor.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace estep
@@ -34,6 +35,19 @@ namespace estep
                    const TimeIntegrator &integrator,
                    const Vector         &q0,
                    const Vector         &v0);
+
+    /** The map from a state of the integrated system to one of @p system
+     * (when the integrated system is a scene made of it). */
+    using StateMap = std::function<
+      void(const Vector &q, const Vector &v, Vector &q_c, Vector &v_c)>;
+
+    /** The monitor of @p system inside the integrated system, whose states
+     * @p to_contact maps to states of @p system. */
+    ContactMonitor(const ContactSystem  &system,
+                   const TimeIntegrator &integrator,
+                   const Vector         &q0,
+                   const Vector         &v0,
+                   StateMap              to_contact);
 
     void
     after_step(const TimeIntegrator &integrator) override;
@@ -85,9 +99,14 @@ namespace estep
     contact_duration() const;
 
   private:
+    /** The current state of the integrator, in the coordinates of system. */
+    void
+    current_state(Vector &q, Vector &v) const;
+
     const ContactSystem  &system;
     const TimeIntegrator &integrator;
-    const Vector          q0, v0;
+    StateMap              to_contact;
+    Vector                q0, v0;
     unsigned int          largest_pair_count     = 0;
     std::uint64_t         steps_with_pairs       = 0;
     std::uint64_t         constraint_events_seen = 0;

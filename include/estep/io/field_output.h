@@ -9,23 +9,26 @@
 
 namespace estep
 {
-  class ElasticBody;
+  class ElasticBodies;
 
   /**
-   * Field output of an elastic body for ParaView, every @p interval of
+   * Field output of elastic bodies for ParaView, every @p interval of
    * simulated time from the start time on (the exact dense output of the
    * integrator): the displacement and the velocity (vertex fields), the volume
-   * ratio J and the strain energy density (cell fields).
+   * ratio J, the strain energy density, the Cauchy stress tensor and the von
+   * Mises stress (cell fields).
    *
    * Format "vtu": one fields/solution-NNNNN.vtu per snapshot (VtuFile: the
-   * mesh's own vertices and cells, compressed) and the time series
+   * mesh's own vertices and cells, compressed), or for several bodies one
+   * fields/solution-NNNNN-B.vtu per body B = 1, 2, ... joined by the
+   * multiblock file fields/solution-NNNNN.vtm; and the time series
    * solution.pvd. The series is rewritten atomically after a snapshot if the
    * last rewrite is a second old or more, and by finish(): it is valid while
    * the run goes on, lists only complete files and lags at most a second
    * behind them (rewriting it after every snapshot cost seconds on a slow
    * disk, which ext4 makes flush a file renamed over another). Format "hdf5":
-   * fields/solution-NNNNN.h5 with the time series solution.xdmf (through
-   * MPI, which start() starts if needed).
+   * fields/solution-NNNNN.h5 with the time series solution.xdmf (one body;
+   * through MPI, which start() starts if needed).
    */
   class FieldOutput : public Postprocessor
   {
@@ -36,11 +39,11 @@ namespace estep
       hdf5
     };
 
-    FieldOutput(const ElasticBody &body,
-                const std::string &directory,
-                const Format       format,
-                const double       start_time,
-                const double       interval);
+    FieldOutput(const ElasticBodies &bodies,
+                const std::string   &directory,
+                const Format         format,
+                const double         start_time,
+                const double         interval);
 
     ~FieldOutput() override;
 

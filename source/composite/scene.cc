@@ -1,0 +1,68 @@
+#include <estep/composite/contact_system.h>
+#include <estep/composite/scene.h>
+
+namespace estep
+{
+  Scene::Scene(std::shared_ptr<const MechanicalSystem> system,
+               std::shared_ptr<const ElasticBodies>    bodies,
+               StateMap                                to_bodies,
+               const std::string                      &name)
+    : SystemDecorator(std::move(system))
+    , bodies(std::move(bodies))
+    , to_bodies(std::move(to_bodies))
+    , scene_name(name)
+  {}
+
+
+
+  const ContactSystem *
+  Scene::contact_system() const
+  {
+    return dynamic_cast<const ContactSystem *>(bodies.get());
+  }
+
+
+
+  const Scene::StateMap &
+  Scene::state_map() const
+  {
+    return to_bodies;
+  }
+
+
+
+  std::string
+  Scene::name() const
+  {
+    return scene_name;
+  }
+
+
+
+  unsigned int
+  Scene::n_bodies() const
+  {
+    return bodies->n_bodies();
+  }
+
+
+
+  const ElasticBody &
+  Scene::body(const unsigned int b) const
+  {
+    return bodies->body(b);
+  }
+
+
+
+  void
+  Scene::body_state(const Vector      &q,
+                    const Vector      &v,
+                    const unsigned int b,
+                    Vector            &q_b,
+                    Vector            &v_b) const
+  {
+    to_bodies(q, v, q_bodies, v_bodies);
+    bodies->body_state(q_bodies, v_bodies, b, q_b, v_b);
+  }
+} // namespace estep

@@ -1,0 +1,439 @@
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/composite/contact_parameters.h>
+#include <estep/composite/contact_system.h>
+#include <estep/composite/scene.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/mesh_description.h>
+#include <estep/fem/tangent_stiffness.h>
+#include <estep/materials/material_registry.h>
+#include <estep/problems/parsed_vector_field.h>
+#include <estep/problems/problem.h>
+
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace estep
+{
+  namespace
+  {
+    using Point3 = std::array<double, 3>;
+
+    Point3
+    parse_point(const std::string &text)
+    {
+      const auto parts = dealii::Utilities::split_string_list(text, ',');
+      return {{dealii::Utilities::string_to_double(parts[0]),
+               dealii::Utilities::string_to_double(parts[1]),
+               dealii::Utilities::string_to_double(parts[2])}};
+    }
+
+    std::string
+    body_section(const unsigned int b)
+    {
+      return "Body " + std::to_string(b + 1);
+    }
+
+    /** Declare a vector field given by a function (FunctionParser). */
+    void
+    declare_function_entries(dealii::ParameterHandler &prm,
+                             const std::string        &what)
+    {
+      prm.declare_entry("Function expression",
+                        "0; 0; 0",
+                        dealii::Patterns::Anything(),
+                        "The three components of the " + what +
+                          ", separated by ';', as functions of the variables "
+                          "(deal.II's FunctionParser syntax).");
+      prm.declare_entry("Variable names",
+                        "x,y,z",
+                        dealii::Patterns::Anything(),
+                        "The names of the reference coordinates (after the "
+                        "placement) in the function expression.");
+      prm.declare_entry("Function constants",
+                        "",
+                        dealii::Patterns::Anything(),
+                        "Constants of the function expression, e.g. 'w=2, "
+                        "a=0.1'.");
+    }
+
+    Vector
+    evaluate_function_entries(dealii::ParameterHandler &prm,
+                              const std::string        &section,
+                              const Vector             &points)
+    {
+      return evaluate_vector_field(section + "/Function expression",
+                                   prm.get("Function expression"),
+                                   prm.get("Variable names"),
+                                   prm.get("Function constants"),
+                                   points);
+    }
+
+    void
+    declare_body_parameters(dealii::ParameterHandler &prm)
+    {
+      const double                 max = dealii::Patterns::Double::max_double_value;
+      const dealii::Patterns::List point(dealii::Patterns::Double(-max, max),
+                                         3,
+                                         3,
+                                         ",");
+      prm.enter_subsection("Mesh");
+      MeshDescription::declare_parameters(prm);
+      prm.leave_subsection();
+      prm.enter_subsection("Placement");
+      {
+        prm.declare_entry("Scale",
+                          "1",
+                          dealii::Patterns::Double(0., max),
+                          "Factor the mesh is scaled by about the origin, "
+                          "first.");
+        prm.declare_entry("Rotation axis",
+                          "0, 0, 1",
+                          point,
+                          "Axis of the rotation about the origin that "
+                          "follows.");
+        prm.declare_entry("Rotation angle",
+                          "0",
+                          dealii::Patterns::Double(-max, max),
+                          "Angle of that rotation, in degrees.");
+        prm.declare_entry("Shift",
+                          "0, 0, 0",
+                          point,
+                          "Translation applied last (length).");
+      }
+      prm.leave_subsection();
+      prm.enter_subsection("Material");
+      declare_material_parameters(prm);
+      prm.leave_subsection();
+      prm.enter_subsection("Initial velocity");
+      {
+        prm.declare_entry("Type",
+                          "rigid motion",
+                          dealii::Patterns::Selection("rigid motion|function"),
+                          "rigid motion: v = V + omega x (X - c); function: "
+                          "the function below of the placed reference "
+                          "coordinates.");
+        prm.declare_entry("Translational velocity",
+                          "0, 0, 0",
+                          point,
+                          "V of the rigid motion.");
+        prm.declare_entry("Angular velocity",
+                          "0, 0, 0",
+                          point,
+                          "omega of the rigid motion.");
+        prm.declare_entry("Rotation centre",
+                          "0, 0, 0",
+                          point,
+                          "c of the rigid motion (placed coordinates).");
+        declare_function_entries(prm, "velocity");
+      }
+      prm.leave_subsection();
+      prm.enter_subsection("Initial displacement");
+      declare_function_entries(prm, "displacement from the placed mesh");
+      prm.leave_subsection();
+      prm.enter_subsection("Supports");
+      {
+        prm.declare_entry(
+          "Boundary ids",
+          "",
+          dealii::Patterns::List(dealii::Patterns::Integer(0, 255)),
+          "The vertices of the boundary faces with these ids (gmsh physical "
+          "tags; deal.II generators' boundary ids) are held fixed.");
+        prm.declare_entry(
+          "Region",
+          "",
+          dealii::Patterns::Anything(),
+          "An expression of the placed reference coordinates x, y, z (e.g. "
+          "'x < 1e-3'): the vertices where it is nonzero are held fixed.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    declare_scene_parameters(dealii::ParameterHandler &prm)
+    {
+      const double max = dealii::Patterns::Double::max_double_value;
+      prm.enter_subsection("Scene");
+      // Declared again after a first reading of the input (see
+      // read_parameters in the application): the number it read sizes the
+      // body subsections. Read it before declaring resets it.
+      unsigned int n_bodies = 1;
+      try
+        {
+          n_bodies = prm.get_integer("Number of bodies");
+        }
+      catch (...)
+        {}
+      prm.declare_entry("Number of bodies",
+                        "1",
+                        dealii::Patterns::Integer(1, 100000),
+                        "How many bodies the scene has: each reads its "
+                        "subsection Body 1, Body 2, ...");
+      prm.declare_entry("Gravity",
+                        "0, 0, 0",
+                        dealii::Patterns::List(dealii::Patterns::Double(-max,
+                                                                        max),
+                                               3,
+                                               3,
+                                               ","),
+                        "The uniform acceleration of gravity (a potential "
+                        "-m g.x in V).");
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          prm.enter_subsection(body_section(b));
+          declare_body_parameters(prm);
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Obstacles");
+      prm.declare_entry(
+        "Half-spaces",
+        "",
+        dealii::Patterns::Anything(),
+        "Rigid half-spaces, separated by ';', each as six numbers 'p_x, p_y, "
+        "p_z, n_x, n_y, n_z': a point p of its plane and the normal n "
+        "pointing out of the obstacle (towards the bodies).");
+      prm.leave_subsection();
+      prm.leave_subsection();
+      ContactParameters::declare_parameters(prm);
+    }
+
+    /** One body of the scene as its subsection describes it. */
+    struct SceneBody
+    {
+      std::shared_ptr<const ElasticBody> body;
+      Vector                             q0, v0;
+      std::vector<unsigned int>          fixed_points;
+      std::string                        material;
+    };
+
+    /** The body points (of @p body) at the vertices of the boundary faces
+     * with one of @p ids. */
+    std::vector<unsigned int>
+    points_on_boundary(const dealii::Triangulation<3> &tria,
+                       const ElasticBody              &body,
+                       const std::set<unsigned int>   &ids)
+    {
+      std::map<Point3, unsigned int> point_of;
+      const Vector                  &X = body.reference_configuration();
+      for (unsigned int i = 0; 3 * i < X.size(); ++i)
+        point_of[{{X[3 * i], X[3 * i + 1], X[3 * i + 2]}}] = i;
+      std::set<unsigned int> points;
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              ids.count(cell->face(f)->boundary_id()) > 0)
+            for (const auto v : cell->face(f)->vertex_indices())
+              {
+                const auto &x = cell->face(f)->vertex(v);
+                const auto  it = point_of.find({{x[0], x[1], x[2]}});
+                if (it != point_of.end())
+                  points.insert(it->second);
+              }
+      return {points.begin(), points.end()};
+    }
+
+    SceneBody
+    create_body(dealii::ParameterHandler &prm, const unsigned int b)
+    {
+      const std::string section = "Scene/" + body_section(b);
+      SceneBody         result;
+
+      MeshDescription mesh;
+      prm.enter_subsection("Mesh");
+      mesh.parse_parameters(prm);
+      prm.leave_subsection();
+      dealii::Triangulation<3> tria;
+      try
+        {
+          make_mesh(mesh, tria);
+        }
+      catch (const dealii::ExceptionBase &e)
+        {
+          std::ostringstream text;
+          e.print_info(text);
+          throw std::runtime_error(section + "/Mesh: " +
+                                   dealii::Utilities::trim(text.str()));
+        }
+
+      prm.enter_subsection("Placement");
+      const double scale = prm.get_double("Scale");
+      const Point3 axis  = parse_point(prm.get("Rotation axis"));
+      const double angle = prm.get_double("Rotation angle");
+      const Point3 shift = parse_point(prm.get("Shift"));
+      prm.leave_subsection();
+      if (!(scale > 0.))
+        throw std::runtime_error(section + "/Placement/Scale: must be positive.");
+      if (scale != 1.)
+        dealii::GridTools::scale(scale, tria);
+      if (angle != 0.)
+        {
+          dealii::Tensor<1, 3> a({axis[0], axis[1], axis[2]});
+          if (!(a.norm() > 0.))
+            throw std::runtime_error(section +
+                                     "/Placement/Rotation axis: must not be "
+                                     "zero.");
+          dealii::GridTools::rotate(a / a.norm(), angle * M_PI / 180., tria);
+        }
+      dealii::GridTools::shift(dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}),
+                               tria);
+
+      prm.enter_subsection("Material");
+      const MaterialChoice material =
+        parse_material_parameters(prm, section + "/Material");
+      prm.leave_subsection();
+      result.material = material.material->name();
+      auto body       = std::make_shared<ElasticBodyWithHessian>(
+        tria, material.material, material.density, "body " + std::to_string(b + 1));
+      const Vector X = body->reference_configuration();
+
+      prm.enter_subsection("Initial displacement");
+      result.q0 = X;
+      result.q0 += evaluate_function_entries(prm,
+                                             section + "/Initial displacement",
+                                             X);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Initial velocity");
+      if (prm.get("Type") == "rigid motion")
+        result.v0 =
+          body->rigid_velocity(X,
+                               parse_point(prm.get("Translational velocity")),
+                               parse_point(prm.get("Angular velocity")),
+                               parse_point(prm.get("Rotation centre")));
+      else
+        result.v0 =
+          evaluate_function_entries(prm, section + "/Initial velocity", X);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Supports");
+      std::set<unsigned int> ids;
+      for (const std::string &id :
+           dealii::Utilities::split_string_list(prm.get("Boundary ids"), ','))
+        ids.insert(dealii::Utilities::string_to_int(id));
+      std::set<unsigned int> fixed;
+      if (!ids.empty())
+        {
+          const auto points = points_on_boundary(tria, *body, ids);
+          if (points.empty())
+            throw std::runtime_error(section +
+                                     "/Supports/Boundary ids: no boundary "
+                                     "face of the body has these ids.");
+          fixed.insert(points.begin(), points.end());
+        }
+      const std::string region = prm.get("Region");
+      prm.leave_subsection();
+      if (!region.empty())
+        {
+          const Vector inside =
+            evaluate_vector_field(section + "/Supports/Region",
+                                  region + "; 0; 0",
+                                  "x,y,z",
+                                  "",
+                                  X);
+          std::size_t n_selected = 0;
+          for (unsigned int i = 0; 3 * i < X.size(); ++i)
+            if (inside[3 * i] != 0.)
+              {
+                fixed.insert(i);
+                ++n_selected;
+              }
+          if (n_selected == 0)
+            throw std::runtime_error(section + "/Supports/Region: <" + region +
+                                     "> selects no vertex of the body.");
+        }
+      if (!fixed.empty() && fixed.size() == body->n_vertices())
+        throw std::runtime_error(section +
+                                 "/Supports: every vertex of the body is "
+                                 "fixed; it has nothing left to move.");
+      result.fixed_points.assign(fixed.begin(), fixed.end());
+      for (const unsigned int i : result.fixed_points)
+        for (unsigned int c = 0; c < 3; ++c)
+          result.v0[3 * i + c] = 0.;
+      result.body = body;
+      return result;
+    }
+
+    Problem
+    create_scene_problem(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Scene");
+      const unsigned int n_bodies = prm.get_integer("Number of bodies");
+      const Point3       gravity  = parse_point(prm.get("Gravity"));
+      std::vector<SceneBody> bodies;
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          prm.enter_subsection(body_section(b));
+          bodies.push_back(create_body(prm, b));
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Obstacles");
+      const std::string half_spaces = prm.get("Half-spaces");
+      prm.leave_subsection();
+      prm.leave_subsection();
+      ContactParameters contact;
+      contact.parse_parameters(prm);
+
+      (void)gravity;
+      (void)half_spaces;
+
+      std::vector<std::shared_ptr<const ElasticBody>> body_list;
+      std::vector<Vector>                             q, v;
+      std::size_t                                     n_fixed = 0;
+      for (const SceneBody &b : bodies)
+        {
+          body_list.push_back(b.body);
+          q.push_back(b.q0);
+          v.push_back(b.v0);
+          n_fixed += b.fixed_points.size();
+        }
+      if (n_bodies == 1 && contact.mode != ContactParameters::Mode::none &&
+          !contact.self_contact)
+        throw std::runtime_error(
+          "Contact/Mode: a scene of one body without obstacles has nothing "
+          "to contact; set Mode = none (or Self contact = true).");
+      auto system =
+        std::make_shared<ContactSystem>(body_list, contact, "scene");
+
+      Problem problem;
+      problem.q0 = system->concatenate(q);
+      problem.v0 = system->concatenate(v);
+      problem.description.add("bodies", n_bodies)
+        .add("cells", [&] {
+          unsigned int n = 0;
+          for (const auto &b : body_list)
+            n += b->n_cells();
+          return n;
+        }())
+        .add("fixed vertices", static_cast<unsigned int>(n_fixed))
+        .add("contact", ContactParameters::mode_name(contact.mode));
+      problem.system = std::make_unique<Scene>(
+        system,
+        system,
+        [](const Vector &q, const Vector &v, Vector &qb, Vector &vb) {
+          qb = q;
+          vb = v;
+        },
+        "scene");
+      return problem;
+    }
+  } // namespace
+} // namespace estep
+
+ESTEP_REGISTER_PROBLEM(
+  "scene",
+  "Any number of elastic bodies (subsection Scene: Body 1, Body 2, ...), "
+  "each with its mesh, placement, material, initial state and supports, "
+  "under gravity, in contact with each other and with rigid obstacles "
+  "(subsection Contact).",
+  estep::declare_scene_parameters,
+  estep::create_scene_problem)
