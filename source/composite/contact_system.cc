@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 
 namespace estep
@@ -519,15 +520,14 @@ namespace estep
 
 
 
-  unsigned int
-  ContactSystem::n_intersecting_pairs(const Vector &q) const
+  std::vector<std::pair<unsigned int, unsigned int>>
+  ContactSystem::intersecting_pairs(const Vector &q) const
   {
     contact::BoundingVolumeHierarchy bvh(triangles);
     bvh.build(q.data(), q.size());
-    std::vector<std::pair<unsigned int, unsigned int>> pairs;
-    bvh.find_pairs(pairs);
-    unsigned int count = 0;
-    for (const auto &[i, j] : pairs)
+    std::vector<std::pair<unsigned int, unsigned int>> candidates, pairs;
+    bvh.find_pairs(candidates);
+    for (const auto &[i, j] : candidates)
       {
         if (!exclusion_groups.empty() &&
             exclusion_groups[i] == exclusion_groups[j])
@@ -535,9 +535,29 @@ namespace estep
         if (contact::triangles_intersect(
               contact::triangle_at(q.data(), triangles[i]),
               contact::triangle_at(q.data(), triangles[j])))
-          ++count;
+          pairs.emplace_back(i, j);
       }
-    return count;
+    return pairs;
+  }
+
+
+
+  unsigned int
+  ContactSystem::n_intersecting_pairs(const Vector &q) const
+  {
+    return intersecting_pairs(q).size();
+  }
+
+
+
+  std::vector<std::pair<unsigned int, unsigned int>>
+  ContactSystem::intersecting_bodies(const Vector &q) const
+  {
+    std::set<std::pair<unsigned int, unsigned int>> bodies;
+    for (const auto &[i, j] : intersecting_pairs(q))
+      bodies.emplace(std::min(triangle_body[i], triangle_body[j]),
+                     std::max(triangle_body[i], triangle_body[j]));
+    return {bodies.begin(), bodies.end()};
   }
 
 

@@ -82,7 +82,7 @@ namespace estep
     void
     declare_body_parameters(dealii::ParameterHandler &prm)
     {
-      const double                 max = dealii::Patterns::Double::max_double_value;
+      const double max = dealii::Patterns::Double::max_double_value;
       const dealii::Patterns::List point(dealii::Patterns::Double(-max, max),
                                          3,
                                          3,
@@ -179,15 +179,12 @@ namespace estep
                         dealii::Patterns::Integer(1, 100000),
                         "How many bodies the scene has: each reads its "
                         "subsection Body 1, Body 2, ...");
-      prm.declare_entry("Gravity",
-                        "0, 0, 0",
-                        dealii::Patterns::List(dealii::Patterns::Double(-max,
-                                                                        max),
-                                               3,
-                                               3,
-                                               ","),
-                        "The uniform acceleration of gravity (a potential "
-                        "-m g.x in V).");
+      prm.declare_entry(
+        "Gravity",
+        "0, 0, 0",
+        dealii::Patterns::List(dealii::Patterns::Double(-max, max), 3, 3, ","),
+        "The uniform acceleration of gravity (a potential "
+        "-m g.x in V).");
       for (unsigned int b = 0; b < n_bodies; ++b)
         {
           prm.enter_subsection(body_section(b));
@@ -234,7 +231,7 @@ namespace estep
               ids.count(cell->face(f)->boundary_id()) > 0)
             for (const auto v : cell->face(f)->vertex_indices())
               {
-                const auto &x = cell->face(f)->vertex(v);
+                const auto &x  = cell->face(f)->vertex(v);
                 const auto  it = point_of.find({{x[0], x[1], x[2]}});
                 if (it != point_of.end())
                   points.insert(it->second);
@@ -261,8 +258,8 @@ namespace estep
         {
           std::ostringstream text;
           e.print_info(text);
-          throw std::runtime_error(section + "/Mesh: " +
-                                   dealii::Utilities::trim(text.str()));
+          throw std::runtime_error(
+            section + "/Mesh: " + dealii::Utilities::trim(text.str()));
         }
 
       prm.enter_subsection("Placement");
@@ -272,7 +269,8 @@ namespace estep
       const Point3 shift = parse_point(prm.get("Shift"));
       prm.leave_subsection();
       if (!(scale > 0.))
-        throw std::runtime_error(section + "/Placement/Scale: must be positive.");
+        throw std::runtime_error(section +
+                                 "/Placement/Scale: must be positive.");
       if (scale != 1.)
         dealii::GridTools::scale(scale, tria);
       if (angle != 0.)
@@ -284,23 +282,26 @@ namespace estep
                                      "zero.");
           dealii::GridTools::rotate(a / a.norm(), angle * M_PI / 180., tria);
         }
-      dealii::GridTools::shift(dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}),
-                               tria);
+      dealii::GridTools::shift(
+        dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}), tria);
 
       prm.enter_subsection("Material");
       const MaterialChoice material =
         parse_material_parameters(prm, section + "/Material");
       prm.leave_subsection();
       result.material = material.material->name();
-      auto body       = std::make_shared<ElasticBodyWithHessian>(
-        tria, material.material, material.density, "body " + std::to_string(b + 1));
+      auto body =
+        std::make_shared<ElasticBodyWithHessian>(tria,
+                                                 material.material,
+                                                 material.density,
+                                                 "body " +
+                                                   std::to_string(b + 1));
       const Vector X = body->reference_configuration();
 
       prm.enter_subsection("Initial displacement");
       result.q0 = X;
-      result.q0 += evaluate_function_entries(prm,
-                                             section + "/Initial displacement",
-                                             X);
+      result.q0 +=
+        evaluate_function_entries(prm, section + "/Initial displacement", X);
       prm.leave_subsection();
 
       prm.enter_subsection("Initial velocity");
@@ -334,12 +335,8 @@ namespace estep
       prm.leave_subsection();
       if (!region.empty())
         {
-          const Vector inside =
-            evaluate_vector_field(section + "/Supports/Region",
-                                  region + "; 0; 0",
-                                  "x,y,z",
-                                  "",
-                                  X);
+          const Vector inside = evaluate_vector_field(
+            section + "/Supports/Region", region + "; 0; 0", "x,y,z", "", X);
           std::size_t n_selected = 0;
           for (unsigned int i = 0; 3 * i < X.size(); ++i)
             if (inside[3 * i] != 0.)
@@ -367,8 +364,8 @@ namespace estep
     create_scene_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Scene");
-      const unsigned int n_bodies = prm.get_integer("Number of bodies");
-      const Point3       gravity  = parse_point(prm.get("Gravity"));
+      const unsigned int     n_bodies = prm.get_integer("Number of bodies");
+      const Point3           gravity  = parse_point(prm.get("Gravity"));
       std::vector<SceneBody> bodies;
       for (unsigned int b = 0; b < n_bodies; ++b)
         {
@@ -407,13 +404,26 @@ namespace estep
       Problem problem;
       problem.q0 = system->concatenate(q);
       problem.v0 = system->concatenate(v);
+      if (const auto overlaps = system->intersecting_bodies(problem.q0);
+          !overlaps.empty())
+        {
+          const auto [b1, b2] = overlaps.front();
+          throw std::runtime_error(
+            b1 == b2 ?
+              "Scene/" + body_section(b1) +
+                ": its boundary intersects itself at t = 0." :
+              "Scene: " + body_section(b1) + " and " + body_section(b2) +
+                " overlap at t = 0 (their boundaries intersect); "
+                "move them apart.");
+        }
       problem.description.add("bodies", n_bodies)
-        .add("cells", [&] {
-          unsigned int n = 0;
-          for (const auto &b : body_list)
-            n += b->n_cells();
-          return n;
-        }())
+        .add("cells",
+             [&] {
+               unsigned int n = 0;
+               for (const auto &b : body_list)
+                 n += b->n_cells();
+               return n;
+             }())
         .add("fixed vertices", static_cast<unsigned int>(n_fixed))
         .add("contact", ContactParameters::mode_name(contact.mode));
       problem.system = std::make_unique<Scene>(

@@ -171,6 +171,15 @@ namespace estep
     unsigned int
     n_intersecting_pairs(const Vector &q) const;
 
+    /** The pairs of boundary triangles (indices into boundary_triangles())
+     * that intersect at q, as n_intersecting_pairs() counts them. */
+    std::vector<std::pair<unsigned int, unsigned int>>
+    intersecting_pairs(const Vector &q) const;
+
+    /** The pairs of bodies (b1 <= b2) whose boundaries intersect at q. */
+    std::vector<std::pair<unsigned int, unsigned int>>
+    intersecting_bodies(const Vector &q) const;
+
     /** Rigid motion of body @p b at (q, v). */
     RigidBodyMotion
     body_motion(const Vector &q, const Vector &v, const unsigned int b) const;
