@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Scenes through the application (parameter_files/scene_*.prm):
+# - the reference text's colliding balls written as a scene: completes, conserves the terraced
+#   energy and the momenta to 1e-10, restitution in [0.7, 1] and contact duration in
+#   [0.03, 0.07] as for ball_collision.prm; its field output is a .vtm multiblock per snapshot
+#   with one VTU per body holding the Cauchy and von Mises stresses;
+# - Newton's cradle (five balls, exact impenetrability): no intersecting faces at any step end,
+#   the momentum passed to the last ball (its velocity above 70 % of the striker's, every other
+#   ball's below 15 %);
+# - bad scenes: one clear message each and exit code 1.
+# Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
+set -u
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+fail() {
+  echo "FAILED: $*"
+  failures=$((failures + 1))
+}
+files="$ESTEP_SOURCE_DIR/parameter_files"
+
+"$ESTEP" "$files/scene_colliding_balls.prm" -s "Output directory=balls" \
+  -s "Postprocessors/Field output/Interval=0.25" > balls.log 2>&1 || fail "scene_colliding_balls: $(tail -3 balls.log)"
+"$ESTEP" "$files/scene_newtons_cradle.prm" -s "Output directory=cradle" > cradle.log 2>&1 ||
+  fail "scene_newtons_cradle: $(tail -3 cradle.log)"
+
+/usr/bin/python3 - <<'PY' || fail "see above"
+import csv, json, os, re, sys
+bad = []
+def expect(condition, message):
+    if not condition:
+        bad.append(message)
+
+s = json.load(open("balls/summary.json"))
+expect(s["status"] == "completed", f"balls: status {s['status']}")
+expect(s["energies"]["terraced energy drift"] < 1e-10, f"balls: drift {s['energies']['terraced energy drift']}")
+p0 = max(abs(x) for x in s["initial momenta"]["linear"])
+l0 = max(abs(x) for x in s["initial momenta"]["angular"])
+expect(s["linear momentum drift"] < 1e-10 * p0, "balls: linear momentum drift")
+expect(s["angular momentum drift"] < 1e-10 * l0, "balls: angular momentum drift")
+c = s["contact"]
+expect(0.7 <= c["coefficient of restitution"] <= 1., f"balls: restitution {c['coefficient of restitution']}")
+expect(0.03 <= c["contact duration"] <= 0.07, f"balls: contact duration {c['contact duration']}")
+print(f"scene balls: {s['counters']['steps']} steps, restitution {c['coefficient of restitution']:.4f}, "
+      f"contact duration {c['contact duration']:.4f}, drift {s['energies']['terraced energy drift']:.1e}")
+series = open("balls/solution.pvd").read()
+vtms = re.findall(r'file="(fields/solution-\d+\.vtm)"', series)
+expect(len(vtms) == 3, f"balls: {len(vtms)} snapshots in solution.pvd, expected 3")
+for vtm in vtms:
+    pieces = re.findall(r'file="([^"]+)"', open(f"balls/{vtm}").read())
+    expect(len(pieces) == 2, f"{vtm}: {len(pieces)} bodies")
+    for piece in pieces:
+        text = open(f"balls/fields/{piece}").read()
+        for field in ("displacement", "velocity", "cauchy_stress", "von_mises_stress", "J"):
+            expect(f'Name="{field}"' in text, f"{piece} lacks {field}")
+
+s = json.load(open("cradle/summary.json"))
+expect(s["status"] == "completed", f"cradle: status {s['status']}")
+expect(s["energies"]["terraced energy drift"] < 1e-10, "cradle: drift")
+expect(s["contact"]["largest number of intersecting face pairs"] == 0, "cradle: intersecting faces")
+last = list(csv.DictReader(open("cradle/history.csv")))[-1]
+v = [float(last[f"V{b}_x"]) for b in range(1, 6)]
+expect(v[4] > 0.7 * 5 and all(abs(x) < 0.15 * 5 for x in v[:4]), f"cradle: final velocities {v}")
+print(f"cradle: {s['counters']['steps']} steps, final velocities {[round(x, 3) for x in v]}")
+for message in bad:
+    print(message)
+sys.exit(1 if bad else 0)
+PY
+
+# Bad scenes: one line, exit code 1.
+expect_error() {
+  local pattern=$1
+  shift
+  "$ESTEP" "$@" > out.txt 2> err.txt
+  local rc=$?
+  [[ $rc == 1 ]] || fail "estep $*: exit code $rc, expected 1"
+  grep -Eq -- "$pattern" err.txt || fail "estep $*: no <$pattern> in: $(cat err.txt)"
+  [[ $(wc -l < err.txt) == 1 ]] || fail "estep $*: the error is not one line: $(cat err.txt)"
+}
+cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time integration/End time=0.01")
+expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
+expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
+expect_error "Scene/Body 3/Supports: every vertex of the body is fixed" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=1"
+expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has these ids" "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=7"
+expect_error "Scene/Body 4/Mesh: .*cannot open the gmsh file 'missing.msh'" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=missing.msh"
+expect_error "Scene/Body 1/Initial velocity/Function expression: <sqrt\(> cannot be evaluated" "${cradle[@]}" -s "Scene/Body 1/Initial velocity/Type=function" -s "Scene/Body 1/Initial velocity/Function expression=sqrt("
+printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
+expect_error "Contact/Mode: a scene of one body without obstacles has nothing to contact" one_body.prm
+[[ ! -e bad ]] || fail "a scene that failed at set-up wrote output"
+
+echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
+[[ $failures == 0 ]]
