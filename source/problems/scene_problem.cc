@@ -7,7 +7,10 @@
 
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
+#include <estep/composite/gravity.h>
+#include <estep/composite/half_space_obstacles.h>
 #include <estep/composite/scene.h>
+#include <estep/composite/supported_system.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>
@@ -36,6 +39,41 @@ namespace estep
       return {{dealii::Utilities::string_to_double(parts[0]),
                dealii::Utilities::string_to_double(parts[1]),
                dealii::Utilities::string_to_double(parts[2])}};
+    }
+
+    /** "p_x, p_y, p_z, n_x, n_y, n_z; ..." as half-spaces (unit normals). */
+    std::vector<HalfSpace>
+    parse_half_spaces(const std::string &text)
+    {
+      std::vector<HalfSpace> planes;
+      for (const std::string &item :
+           dealii::Utilities::split_string_list(text, ';'))
+        {
+          const auto parts = dealii::Utilities::split_string_list(item, ',');
+          std::vector<double> x;
+          try
+            {
+              for (const std::string &part : parts)
+                x.push_back(dealii::Utilities::string_to_double(part));
+            }
+          catch (...)
+            {
+              x.clear();
+            }
+          const double norm =
+            x.size() == 6 ? std::sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5]) :
+                            0.;
+          if (!(norm > 0.) || !std::isfinite(norm))
+            throw std::runtime_error(
+              "Scene/Obstacles/Half-spaces: <" + item +
+              "> is not six numbers p_x, p_y, p_z, n_x, n_y, n_z with a "
+              "nonzero normal.");
+          HalfSpace plane;
+          plane.point  = {{x[0], x[1], x[2]}};
+          plane.normal = {{x[3] / norm, x[4] / norm, x[5] / norm}};
+          planes.push_back(plane);
+        }
+      return planes;
     }
 
     std::string
@@ -210,7 +248,6 @@ namespace estep
       std::shared_ptr<const ElasticBody> body;
       Vector                             q0, v0;
       std::vector<unsigned int>          fixed_points;
-      std::string                        material;
     };
 
     /** The body points (of @p body) at the vertices of the boundary faces
@@ -289,7 +326,6 @@ namespace estep
       const MaterialChoice material =
         parse_material_parameters(prm, section + "/Material");
       prm.leave_subsection();
-      result.material = material.material->name();
       auto body =
         std::make_shared<ElasticBodyWithHessian>(tria,
                                                  material.material,
@@ -380,60 +416,127 @@ namespace estep
       ContactParameters contact;
       contact.parse_parameters(prm);
 
-      (void)gravity;
-      (void)half_spaces;
+      const std::vector<HalfSpace> planes = parse_half_spaces(half_spaces);
 
       std::vector<std::shared_ptr<const ElasticBody>> body_list;
       std::vector<Vector>                             q, v;
-      std::size_t                                     n_fixed = 0;
       for (const SceneBody &b : bodies)
         {
           body_list.push_back(b.body);
           q.push_back(b.q0);
           v.push_back(b.v0);
-          n_fixed += b.fixed_points.size();
         }
-      if (n_bodies == 1 && contact.mode != ContactParameters::Mode::none &&
-          !contact.self_contact)
+      const bool contact_on = contact.mode != ContactParameters::Mode::none;
+      if (contact_on && n_bodies == 1 && !contact.self_contact &&
+          planes.empty())
         throw std::runtime_error(
           "Contact/Mode: a scene of one body without obstacles has nothing "
           "to contact; set Mode = none (or Self contact = true).");
-      auto system =
-        std::make_shared<ContactSystem>(body_list, contact, "scene");
+      if (!contact_on && !planes.empty())
+        throw std::runtime_error(
+          "Scene/Obstacles: the obstacles need a contact model; set "
+          "Contact/Mode = impenetrability or penalty.");
 
-      Problem problem;
-      problem.q0 = system->concatenate(q);
-      problem.v0 = system->concatenate(v);
-      if (const auto overlaps = system->intersecting_bodies(problem.q0);
-          !overlaps.empty())
+      // The bodies' own system: the body alone, or the bodies in contact.
+      std::shared_ptr<const MechanicalSystem> system;
+      std::shared_ptr<const ElasticBodies>    bodies_system;
+      std::shared_ptr<const ContactSystem>    contact_system;
+      std::vector<unsigned int>               offsets(n_bodies, 0);
+      Vector                                  q0, v0;
+      if (n_bodies == 1 && !contact_on)
         {
-          const auto [b1, b2] = overlaps.front();
-          throw std::runtime_error(
-            b1 == b2 ?
-              "Scene/" + body_section(b1) +
-                ": its boundary intersects itself at t = 0." :
-              "Scene: " + body_section(b1) + " and " + body_section(b2) +
-                " overlap at t = 0 (their boundaries intersect); "
-                "move them apart.");
+          system = bodies_system = body_list[0];
+          q0                     = q[0];
+          v0                     = v[0];
         }
+      else
+        {
+          contact_system =
+            std::make_shared<ContactSystem>(body_list, contact, "scene");
+          system = bodies_system = contact_system;
+          q0                     = contact_system->concatenate(q);
+          v0                     = contact_system->concatenate(v);
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            offsets[b] = contact_system->point_offset(b);
+          if (const auto overlaps = contact_system->intersecting_bodies(q0);
+              !overlaps.empty())
+            {
+              const auto [b1, b2] = overlaps.front();
+              throw std::runtime_error(
+                b1 == b2 ?
+                  "Scene/" + body_section(b1) +
+                    ": its boundary intersects itself at t = 0." :
+                  "Scene: " + body_section(b1) + " and " + body_section(b2) +
+                    " overlap at t = 0 (their boundaries intersect); "
+                    "move them apart.");
+            }
+        }
+
+      // Decorations: obstacles, gravity, supports.
+      if (!planes.empty())
+        {
+          auto obstacles = std::make_shared<HalfSpaceObstacles>(
+            system,
+            planes,
+            boundary_points(*contact_system),
+            contact.mode == ContactParameters::Mode::penalty ?
+              HalfSpaceObstacles::Mode::penalty :
+              HalfSpaceObstacles::Mode::impenetrability,
+            contact.penalty_parameter);
+          if (const unsigned int behind = obstacles->n_points_behind(q0))
+            throw std::runtime_error(
+              "Scene/Obstacles: " + std::to_string(behind) +
+              " boundary vertices of the bodies lie inside an obstacle at t "
+              "= 0; move the bodies or the obstacles.");
+          system = obstacles;
+        }
+      if (gravity[0] != 0. || gravity[1] != 0. || gravity[2] != 0.)
+        system = std::make_shared<Gravity>(system, gravity);
+      std::vector<unsigned int> fixed;
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        for (const unsigned int i : bodies[b].fixed_points)
+          fixed.push_back(offsets[b] + i);
+      Scene::StateMap to_bodies = [](const Vector &q,
+                                     const Vector &v,
+                                     Vector       &qb,
+                                     Vector       &vb) {
+        qb = q;
+        vb = v;
+      };
+      Problem problem;
+      if (!fixed.empty())
+        {
+          auto supported = std::make_shared<SupportedSystem>(system, fixed, q0);
+          problem.q0     = supported->restrict(q0);
+          problem.v0     = supported->restrict(v0);
+          to_bodies      = [supported](const Vector &q,
+                                  const Vector &v,
+                                  Vector       &qb,
+                                  Vector       &vb) {
+            qb = supported->expand(q);
+            vb = supported->expand_velocity(v);
+          };
+          system = supported;
+        }
+      else
+        {
+          problem.q0 = q0;
+          problem.v0 = v0;
+        }
+
+      unsigned int n_cells = 0;
+      for (const auto &b : body_list)
+        n_cells += b->n_cells();
       problem.description.add("bodies", n_bodies)
-        .add("cells",
-             [&] {
-               unsigned int n = 0;
-               for (const auto &b : body_list)
-                 n += b->n_cells();
-               return n;
-             }())
-        .add("fixed vertices", static_cast<unsigned int>(n_fixed))
+        .add("cells", n_cells)
+        .add("fixed vertices", static_cast<unsigned int>(fixed.size()))
+        .add("gravity", std::vector<double>(gravity.begin(), gravity.end()))
+        .add("obstacles", static_cast<unsigned int>(planes.size()))
         .add("contact", ContactParameters::mode_name(contact.mode));
-      problem.system = std::make_unique<Scene>(
-        system,
-        system,
-        [](const Vector &q, const Vector &v, Vector &qb, Vector &vb) {
-          qb = q;
-          vb = v;
-        },
-        "scene");
+      problem.system = std::make_unique<Scene>(system,
+                                               bodies_system,
+                                               std::move(to_bodies),
+                                               "scene");
       return problem;
     }
   } // namespace
