@@ -1,0 +1,324 @@
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <estep/composite/supported_system.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr unsigned int invalid = std::numeric_limits<unsigned int>::max();
+  } // namespace
+
+
+
+  SupportedSystem::SupportedSystem(std::shared_ptr<const MechanicalSystem> base,
+                                   std::vector<unsigned int> fixed_points,
+                                   const Vector             &configuration)
+    : SystemDecorator(std::move(base))
+    , dim(base_system->spatial_dimension())
+    , fixed_point_list(std::move(fixed_points))
+  {
+    const unsigned int n_base_dofs = base_system->n_dofs();
+    if (dim == 0 || n_base_dofs % dim != 0)
+      throw std::invalid_argument(
+        "SupportedSystem: the base system <" + base_system->name() + "> has " +
+        std::to_string(n_base_dofs) +
+        " coordinates, not a whole number of points of dimension " +
+        std::to_string(dim) + ".");
+    const unsigned int n_points = n_base_dofs / dim;
+    if (configuration.size() != n_base_dofs)
+      throw std::invalid_argument(
+        "SupportedSystem: the configuration holding the fixed points has " +
+        std::to_string(configuration.size()) +
+        " entries, but the base system <" + base_system->name() + "> has " +
+        std::to_string(n_base_dofs) + " coordinates.");
+
+    std::sort(fixed_point_list.begin(), fixed_point_list.end());
+    fixed_point_list.erase(std::unique(fixed_point_list.begin(),
+                                       fixed_point_list.end()),
+                           fixed_point_list.end());
+    if (!fixed_point_list.empty() && fixed_point_list.back() >= n_points)
+      throw std::invalid_argument("SupportedSystem: fixed point " +
+                                  std::to_string(fixed_point_list.back()) +
+                                  " is out of range: the base system <" +
+                                  base_system->name() + "> has " +
+                                  std::to_string(n_points) + " points (0 to " +
+                                  std::to_string(n_points - 1) + ").");
+    if (fixed_point_list.size() == n_points)
+      throw std::invalid_argument(
+        "SupportedSystem: all " + std::to_string(n_points) +
+        " points of the base system <" + base_system->name() +
+        "> are fixed; at least one point must be left free.");
+
+    // The free points and their coordinates, in increasing order.
+    free_point_list.reserve(n_points - fixed_point_list.size());
+    auto next_fixed = fixed_point_list.begin();
+    for (unsigned int i = 0; i < n_points; ++i)
+      if (next_fixed != fixed_point_list.end() && *next_fixed == i)
+        ++next_fixed;
+      else
+        free_point_list.push_back(i);
+    free_dofs.reserve(dim * free_point_list.size());
+    reduced_dofs.assign(n_base_dofs, invalid);
+    for (const unsigned int i : free_point_list)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          reduced_dofs[dim * i + c] = free_dofs.size();
+          free_dofs.push_back(dim * i + c);
+        }
+
+    gather(base_system->inverse_mass(), inv_mass);
+    full_configuration = configuration;
+    scratch_q          = full_configuration;
+    scratch_v.reinit(n_base_dofs);
+    flight_q = full_configuration;
+    flight_v.reinit(n_base_dofs);
+  }
+
+
+
+  SupportedSystem::~SupportedSystem() = default;
+
+
+
+  unsigned int
+  SupportedSystem::n_dofs() const
+  {
+    return free_dofs.size();
+  }
+
+
+
+  const Vector &
+  SupportedSystem::inverse_mass() const
+  {
+    return inv_mass;
+  }
+
+
+
+  double
+  SupportedSystem::energy(const Vector &q) const
+  {
+    scatter(q, scratch_q);
+    return base_system->energy(scratch_q);
+  }
+
+
+
+  void
+  SupportedSystem::gradient(const Vector &q, Vector &g) const
+  {
+    scatter(q, scratch_q);
+    base_system->gradient(scratch_q, scratch_g);
+    gather(scratch_g, g);
+  }
+
+
+
+  std::unique_ptr<FreeFlight>
+  SupportedSystem::free_flight(const Vector &q, const Vector &v) const
+  {
+    scatter(q, flight_q);
+    scatter(v, flight_v); // zero on the fixed points, always
+    return base_system->free_flight(flight_q, flight_v);
+  }
+
+
+
+  std::optional<ConstraintEvent>
+  SupportedSystem::first_constraint_event(const Vector &q,
+                                          const Vector &v,
+                                          const double  s_max) const
+  {
+    scatter(q, scratch_q);
+    scatter(v, scratch_v);
+    std::optional<ConstraintEvent> event =
+      base_system->first_constraint_event(scratch_q, scratch_v, s_max);
+    if (event)
+      event->normal = restrict(event->normal);
+    return event;
+  }
+
+
+
+  const dealii::SparsityPattern &
+  SupportedSystem::hessian_sparsity() const
+  {
+    build_hessian_structure();
+    return *sparsity;
+  }
+
+
+
+  void
+  SupportedSystem::hessian(const Vector                 &q,
+                           dealii::SparseMatrix<double> &H) const
+  {
+    build_hessian_structure();
+    if (H.m() != n_dofs() || H.n() != n_dofs())
+      throw std::invalid_argument(
+        "SupportedSystem::hessian: the matrix is " + std::to_string(H.m()) +
+        " x " + std::to_string(H.n()) + ", not " + std::to_string(n_dofs()) +
+        " square (initialise it with hessian_sparsity()).");
+    scatter(q, scratch_q);
+    base_system->hessian(scratch_q, *full_hessian);
+
+    // Row by row, the entries of the block come in the order of the base's
+    // row with the fixed columns left out: both patterns store the diagonal
+    // first and then the columns in increasing order, and the renumbering of
+    // the free coordinates keeps their order.
+    const dealii::SparseMatrix<double> &full = *full_hessian;
+    for (unsigned int r = 0; r < free_dofs.size(); ++r)
+      {
+        auto       entry = H.begin(r);
+        const auto end   = H.end(r);
+        for (auto full_entry = full.begin(free_dofs[r]);
+             full_entry != full.end(free_dofs[r]);
+             ++full_entry)
+          {
+            const unsigned int column = reduced_dofs[full_entry->column()];
+            if (column == invalid)
+              continue;
+            if (entry == end || entry->column() != column)
+              throw std::logic_error(
+                "SupportedSystem::hessian: the matrix was not initialised "
+                "with hessian_sparsity() (row " +
+                std::to_string(r) + ").");
+            entry->value() = full_entry->value();
+            ++entry;
+          }
+        if (entry != end)
+          throw std::logic_error(
+            "SupportedSystem::hessian: the matrix was not initialised with "
+            "hessian_sparsity() (row " +
+            std::to_string(r) + ").");
+      }
+  }
+
+
+
+  std::vector<double>
+  SupportedSystem::observables(const Vector &q, const Vector &v) const
+  {
+    scatter(q, scratch_q);
+    scatter(v, scratch_v);
+    return base_system->observables(scratch_q, scratch_v);
+  }
+
+
+
+  Vector
+  SupportedSystem::expand(const Vector &q_free) const
+  {
+    Vector full(full_configuration);
+    scatter(q_free, full);
+    return full;
+  }
+
+
+
+  Vector
+  SupportedSystem::expand_velocity(const Vector &v_free) const
+  {
+    Vector full(base_system->n_dofs());
+    scatter(v_free, full);
+    return full;
+  }
+
+
+
+  Vector SupportedSystem::restrict(const Vector &full) const
+  {
+    Vector part;
+    gather(full, part);
+    return part;
+  }
+
+
+
+  unsigned int
+  SupportedSystem::n_fixed_points() const
+  {
+    return fixed_point_list.size();
+  }
+
+
+
+  const std::vector<unsigned int> &
+  SupportedSystem::fixed_points() const
+  {
+    return fixed_point_list;
+  }
+
+
+
+  const std::vector<unsigned int> &
+  SupportedSystem::free_points() const
+  {
+    return free_point_list;
+  }
+
+
+
+  void
+  SupportedSystem::scatter(const Vector &q_free, Vector &full) const
+  {
+    if (q_free.size() != free_dofs.size())
+      throw std::invalid_argument("SupportedSystem: a vector of " +
+                                  std::to_string(q_free.size()) +
+                                  " entries where the free coordinates are " +
+                                  std::to_string(free_dofs.size()) + ".");
+    AssertDimension(full.size(), reduced_dofs.size());
+    for (unsigned int k = 0; k < free_dofs.size(); ++k)
+      full[free_dofs[k]] = q_free[k];
+  }
+
+
+
+  void
+  SupportedSystem::gather(const Vector &full, Vector &part) const
+  {
+    if (full.size() != reduced_dofs.size())
+      throw std::invalid_argument(
+        "SupportedSystem: a vector of " + std::to_string(full.size()) +
+        " entries where the base system has " +
+        std::to_string(reduced_dofs.size()) + " coordinates.");
+    if (part.size() != free_dofs.size())
+      part.reinit(free_dofs.size(), true);
+    for (unsigned int k = 0; k < free_dofs.size(); ++k)
+      part[k] = full[free_dofs[k]];
+  }
+
+
+
+  void
+  SupportedSystem::build_hessian_structure() const
+  {
+    if (sparsity)
+      return;
+    // Throws std::logic_error if the base has no Hessian.
+    const dealii::SparsityPattern &full = base_system->hessian_sparsity();
+    dealii::DynamicSparsityPattern dsp(free_dofs.size(), free_dofs.size());
+    for (unsigned int r = 0; r < free_dofs.size(); ++r)
+      for (auto entry = full.begin(free_dofs[r]);
+           entry != full.end(free_dofs[r]);
+           ++entry)
+        {
+          const unsigned int column = reduced_dofs[entry->column()];
+          if (column != invalid)
+            dsp.add(r, column);
+        }
+    auto pattern = std::make_unique<dealii::SparsityPattern>();
+    pattern->copy_from(dsp);
+    full_hessian = std::make_unique<dealii::SparseMatrix<double>>(full);
+    sparsity     = std::move(pattern);
+  }
+} // namespace estep
