@@ -1,0 +1,318 @@
+// The error-free transformations of the compensated dot product assume that
+// every operation is rounded separately: no contraction of a * b + c into a
+// fused multiply-add by the compiler (the one fma below is explicit).
+#pragma GCC optimize("fp-contract=off")
+
+#include <estep/composite/gravity.h>
+#include <estep/systems/line_taylor_form.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace estep
+{
+  namespace
+  {
+    constexpr double epsilon = std::numeric_limits<double>::epsilon();
+    constexpr double unit    = epsilon / 2.;
+
+    /** The common part of two enclosures of the same quantity (their hull
+     * if they do not overlap, which valid enclosures always do). */
+    Interval
+    intersection(const Interval &x, const Interval &y)
+    {
+      const Interval common = {std::max(x.lower, y.lower),
+                               std::min(x.upper, y.upper)};
+      if (common.lower <= common.upper)
+        return common;
+      return {std::min(x.lower, y.lower), std::max(x.upper, y.upper)};
+    }
+
+    /**
+     * The free flight of a Gravity system: f(s) = f_base(s) + l(s) with the
+     * linear term l(s) = c0 + c1 s, c0 = -w . q and c1 = -w . v.
+     *
+     * The computed l(s) = fl(c0 + c1 s) (one fused multiply-add) is a
+     * monotone function of s, since rounding is monotone; so are the sums
+     * fl(f_base + l) in each argument. The enclosures are therefore:
+     * - the sum of the base's enclosures and of the hull of l(a), l(b),
+     *   widened by the rounding of l (2 units of round-off of its largest
+     *   magnitude on [a, b]) and by the interval sums' own margin; the
+     *   slope enclosure is the base's shifted by c1;
+     * - where the base reports a sample p in [a, b]: intersected with the
+     *   first-order form of the sum about p (LineTaylorForm::from_enclosure()
+     *   of the base, with the base's value tolerance plus 64 units of
+     *   round-off of its value at p, plus the exact form of l), whose value
+     *   range follows the slope of the sum, f'_base + c1, not the sum of the
+     *   two slopes' magnitudes: where the base's slope cancels the weight's
+     *   (a body resting on a support) the enclosure stays narrow;
+     * - the curvature is the base's (l'' = 0), the sample the base's sample
+     *   point with f and f' there computed as value_and_derivative() does.
+     *
+     * value_tolerance(): the base's plus 8 units of round-off (of the double
+     * precision epsilon) of sum_i |w_i q_i|: c0 and c1 are compensated dot
+     * products, and energy() sums the linear term the same way, so that the
+     * flight's l(s) and the linear term energy() computes at q + s v differ
+     * from the exact -w . (q + s v) by about one unit of round-off of sum_i
+     * |w_i x_i| each, near s = 0.
+     */
+    class GravityFlight : public FreeFlight
+    {
+    public:
+      GravityFlight(std::unique_ptr<FreeFlight> base_flight,
+                    const Vector               &weights,
+                    const Vector               &q,
+                    const Vector               &v)
+        : base(std::move(base_flight))
+      {
+        double magnitude_q = 0.;
+        c0                 = -compensated_dot(weights, q, &magnitude_q);
+        c1                 = -compensated_dot(weights, v);
+        linear_tolerance   = 8. * epsilon * magnitude_q;
+      }
+
+      double
+      value(const double s) const override
+      {
+        return base->value(s) + linear(s);
+      }
+
+      LineValue
+      value_and_derivative(const double s) const override
+      {
+        return with_linear_term(s, base->value_and_derivative(s));
+      }
+
+      LineEnclosure
+      enclose(const double a, const double b) const override
+      {
+        // The base's tolerance first: asking for it may change the base's
+        // caches (a PenaltyFlight makes its first one by a broad phase at
+        // s = 0), and with them the last bits of its values after the
+        // enclosure, which its sample must match.
+        const double        base_tolerance = base->value_tolerance();
+        const LineEnclosure e              = base->enclose(a, b);
+
+        // The linear term over [a, b]: its computed values are monotone in s.
+        const double   la = linear(a), lb = linear(b);
+        const Interval l = Interval::hull(la, lb).widened(
+          0., 2. * unit * std::max(std::abs(la), std::abs(lb)));
+        LineEnclosure enclosure;
+        enclosure.value      = e.value + l;
+        enclosure.derivative = e.derivative + Interval::point(c1);
+        enclosure.curvature  = e.curvature;
+
+        const double p = e.sample_point;
+        if (p >= a && p <= b)
+          {
+            enclosure.sample_point = p;
+            enclosure.sample       = with_linear_term(p, e.sample);
+            if (std::isfinite(e.sample.value) &&
+                std::isfinite(e.sample.derivative))
+              {
+                // The first-order form of the sum about the sample.
+                LineTaylorForm about_p;
+                about_p.centre      = p;
+                about_p.radius      = std::max(b - p, p - a) * (1. + 4. * unit);
+                LineTaylorForm form = LineTaylorForm::from_enclosure(
+                  p,
+                  about_p.radius,
+                  e.sample,
+                  e,
+                  base_tolerance + 64. * epsilon * std::abs(e.sample.value));
+                LineTaylorForm linear_form = about_p;
+                linear_form.value          = linear(p);
+                linear_form.slope          = c1;
+                // The rounding of l anywhere on [a, b].
+                linear_form.value_error =
+                  2. * unit * std::max(std::abs(la), std::abs(lb));
+                form += linear_form;
+                const LineEnclosure combined = form.enclosure();
+                enclosure.value = intersection(enclosure.value, combined.value);
+                enclosure.derivative =
+                  intersection(enclosure.derivative, combined.derivative);
+              }
+          }
+        return enclosure;
+      }
+
+      double
+      value_tolerance() const override
+      {
+        return base->value_tolerance() + linear_tolerance;
+      }
+
+      double
+      admissible_limit() const override
+      {
+        return base->admissible_limit();
+      }
+
+    private:
+      /** l(s) = c0 + c1 s, rounded once. */
+      double
+      linear(const double s) const
+      {
+        return std::fma(c1, s, c0);
+      }
+
+      /** The base's value and slope at @p s plus the linear term's. */
+      LineValue
+      with_linear_term(const double s, const LineValue &base_value) const
+      {
+        return {base_value.value + linear(s), base_value.derivative + c1};
+      }
+
+      std::unique_ptr<FreeFlight> base;
+      double                      c0 = 0., c1 = 0.;
+      double                      linear_tolerance = 0.;
+    };
+  } // namespace
+
+
+
+  double
+  compensated_dot(const Vector &x, const Vector &y, double *magnitude)
+  {
+    if (x.size() != y.size())
+      throw std::invalid_argument(
+        "compensated_dot: the vectors differ in size.");
+    // Dot2: the products split exactly by a fused multiply-add, the running
+    // sum by Knuth's two-sum; the errors are summed plainly and added at the
+    // end.
+    double sum = 0., error = 0., gross = 0.;
+    for (unsigned int i = 0; i < x.size(); ++i)
+      {
+        const double product       = x[i] * y[i];
+        const double product_error = std::fma(x[i], y[i], -product);
+        const double t             = sum + product;
+        const double z             = t - sum;
+        const double sum_error     = (sum - (t - z)) + (product - z);
+        sum                        = t;
+        error += product_error + sum_error;
+        gross += std::abs(product);
+      }
+    if (magnitude != nullptr)
+      *magnitude = gross;
+    return sum + error;
+  }
+
+
+
+  Gravity::Gravity(std::shared_ptr<const MechanicalSystem> base,
+                   const std::array<double, 3>            &acceleration)
+    : SystemDecorator(std::move(base))
+    , g(acceleration)
+  {
+    const unsigned int dim = base_system->spatial_dimension();
+    for (const double x : g)
+      if (!std::isfinite(x))
+        throw std::invalid_argument(
+          "Gravity: the acceleration must be finite.");
+    if (dim < 1 || dim > 3)
+      throw std::invalid_argument("Gravity: the spatial dimension of <" +
+                                  base_system->name() + "> is not 1, 2 or 3.");
+    for (unsigned int c = dim; c < 3; ++c)
+      if (g[c] != 0.)
+        throw std::invalid_argument(
+          "Gravity: the acceleration has a component beyond the spatial "
+          "dimension of <" +
+          base_system->name() + ">.");
+    const Vector &inverse_mass = base_system->inverse_mass();
+    if (inverse_mass.size() != base_system->n_dofs() ||
+        base_system->n_dofs() % dim != 0)
+      throw std::invalid_argument(
+        "Gravity: the coordinates of <" + base_system->name() +
+        "> are not point positions of its spatial dimension.");
+    w.reinit(inverse_mass.size());
+    for (unsigned int i = 0; i < w.size(); ++i)
+      {
+        const double gc = g[i % dim];
+        if (gc == 0.)
+          continue;
+        if (!(inverse_mass[i] > 0.) || !std::isfinite(inverse_mass[i]))
+          throw std::invalid_argument(
+            "Gravity: coordinate " + std::to_string(i) + " of <" +
+            base_system->name() +
+            "> has no positive finite mass to give a weight.");
+        w[i] = gc / inverse_mass[i];
+      }
+  }
+
+
+
+  const std::array<double, 3> &
+  Gravity::acceleration() const
+  {
+    return g;
+  }
+
+
+
+  const Vector &
+  Gravity::weights() const
+  {
+    return w;
+  }
+
+
+
+  double
+  Gravity::gravitational_potential(const Vector &q) const
+  {
+    return -compensated_dot(w, q);
+  }
+
+
+
+  double
+  Gravity::energy(const Vector &q) const
+  {
+    const double V = base_system->energy(q);
+    if (!std::isfinite(V))
+      return V;
+    return V + gravitational_potential(q);
+  }
+
+
+
+  void
+  Gravity::gradient(const Vector &q, Vector &grad) const
+  {
+    base_system->gradient(q, grad);
+    grad -= w;
+  }
+
+
+
+  std::unique_ptr<FreeFlight>
+  Gravity::free_flight(const Vector &q, const Vector &v) const
+  {
+    return std::make_unique<GravityFlight>(base_system->free_flight(q, v),
+                                           w,
+                                           q,
+                                           v);
+  }
+
+
+
+  std::vector<std::string>
+  Gravity::observable_names() const
+  {
+    std::vector<std::string> names = base_system->observable_names();
+    names.emplace_back("gravitational potential");
+    return names;
+  }
+
+
+
+  std::vector<double>
+  Gravity::observables(const Vector &q, const Vector &v) const
+  {
+    std::vector<double> values = base_system->observables(q, v);
+    values.push_back(gravitational_potential(q));
+    return values;
+  }
+} // namespace estep
