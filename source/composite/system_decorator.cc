@@ -4,8 +4,7 @@
 
 namespace estep
 {
-  SystemDecorator::SystemDecorator(
-    std::shared_ptr<const MechanicalSystem> base)
+  SystemDecorator::SystemDecorator(std::shared_ptr<const MechanicalSystem> base)
     : base_system(std::move(base))
   {
     if (!base_system)
