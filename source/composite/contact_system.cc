@@ -397,6 +397,9 @@ namespace estep
       add(std::to_string(b + 1));
     add("");
     names.emplace_back("intersecting pairs");
+    for (const auto &body : bodies)
+      for (const std::string &name : body->observable_names())
+        names.push_back(name);
     return names;
   }
 
@@ -414,6 +417,13 @@ namespace estep
       add(body_motion(q, v, b));
     add(system_motion(q, v));
     values.push_back(n_intersecting_pairs(q));
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (!bodies[b]->observable_names().empty())
+        {
+          const std::vector<double> own =
+            bodies[b]->observables(extract(q, b), extract(v, b));
+          values.insert(values.end(), own.begin(), own.end());
+        }
     return values;
   }
 

@@ -179,6 +179,13 @@ namespace estep
       prm.enter_subsection("Initial displacement");
       declare_function_entries(prm, "displacement from the placed mesh");
       prm.leave_subsection();
+      prm.declare_entry(
+        "Tracked point",
+        "",
+        dealii::Patterns::Anything(),
+        "Placed reference coordinates 'x, y, z' of a point whose current "
+        "position the history records (the nearest vertex): columns "
+        "body<k>_x, body<k>_y, body<k>_z; empty for none.");
       prm.enter_subsection("Supports");
       {
         prm.declare_entry(
@@ -333,6 +340,15 @@ namespace estep
                                                  "body " +
                                                    std::to_string(b + 1));
       const Vector X = body->reference_configuration();
+      if (const std::string tracked = prm.get("Tracked point");
+          !tracked.empty())
+        {
+          if (dealii::Utilities::split_string_list(tracked, ',').size() != 3)
+            throw std::runtime_error(section + "/Tracked point: <" + tracked +
+                                     "> is not three numbers x, y, z.");
+          body->track_point("body" + std::to_string(b + 1),
+                            parse_point(tracked));
+        }
 
       prm.enter_subsection("Initial displacement");
       result.q0 = X;
@@ -445,17 +461,19 @@ namespace estep
       Vector                                  q0, v0;
       if (n_bodies == 1 && !contact_on)
         {
-          system = bodies_system = body_list[0];
-          q0                     = q[0];
-          v0                     = v[0];
+          system        = body_list[0];
+          bodies_system = body_list[0];
+          q0            = q[0];
+          v0            = v[0];
         }
       else
         {
           contact_system =
             std::make_shared<ContactSystem>(body_list, contact, "scene");
-          system = bodies_system = contact_system;
-          q0                     = contact_system->concatenate(q);
-          v0                     = contact_system->concatenate(v);
+          system        = contact_system;
+          bodies_system = contact_system;
+          q0            = contact_system->concatenate(q);
+          v0            = contact_system->concatenate(v);
           for (unsigned int b = 0; b < n_bodies; ++b)
             offsets[b] = contact_system->point_offset(b);
           if (const auto overlaps = contact_system->intersecting_bodies(q0);
@@ -496,13 +514,11 @@ namespace estep
       for (unsigned int b = 0; b < n_bodies; ++b)
         for (const unsigned int i : bodies[b].fixed_points)
           fixed.push_back(offsets[b] + i);
-      Scene::StateMap to_bodies = [](const Vector &q,
-                                     const Vector &v,
-                                     Vector       &qb,
-                                     Vector       &vb) {
-        qb = q;
-        vb = v;
-      };
+      Scene::StateMap to_bodies =
+        [](const Vector &q, const Vector &v, Vector &qb, Vector &vb) {
+          qb = q;
+          vb = v;
+        };
       Problem problem;
       if (!fixed.empty())
         {
