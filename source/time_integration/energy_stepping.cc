@@ -235,8 +235,16 @@ namespace estep
   {
     Snapshot snapshot;
     snapshot.t = time;
-    snapshot.q = q_start;
-    snapshot.q.add(time - t_previous, v_flight);
+    if (time == t)
+      // The end of the flight exactly as the step computed it (time -
+      // t_previous may round differently from the flight's length: a point
+      // that the step stopped in front of an obstacle would seem behind it).
+      snapshot.q = q;
+    else
+      {
+        snapshot.q = q_start;
+        snapshot.q.add(time - t_previous, v_flight);
+      }
     snapshot.v                         = v_flight;
     snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
     snapshot.potential_energy          = system.energy(snapshot.q);
