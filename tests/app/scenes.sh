@@ -7,6 +7,16 @@
 # - Newton's cradle (five balls, exact impenetrability): no intersecting faces at any step end,
 #   the momentum passed to the last ball (its velocity above 70 % of the striker's, every other
 #   ball's below 15 %);
+# - the ball dropped on a floor (to t = 0.4): the free fall follows v = v0 - g t to 2 % of the
+#   impact speed (energy-stepping's time lags the parabola's at first order in h), the impact
+#   speed is the free fall's (1 %), no vertex is ever behind the floor, the contact lasts
+#   0.005 to 0.03 and the rebound keeps 70 to 100 % of the speed; the terraced energy is
+#   conserved to 1e-12 relative;
+# - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
+#   on the same mesh (and the clamped vertices never move: the supports remove them);
+# - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
+#   in the exact mode; the penalty mode lets vertices into the wall;
+# - the README's own scene runs as written;
 # - bad scenes: one clear message each and exit code 1.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
@@ -24,6 +34,19 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
   -s "Postprocessors/Field output/Interval=0.25" > balls.log 2>&1 || fail "scene_colliding_balls: $(tail -3 balls.log)"
 "$ESTEP" "$files/scene_newtons_cradle.prm" -s "Output directory=cradle" > cradle.log 2>&1 ||
   fail "scene_newtons_cradle: $(tail -3 cradle.log)"
+"$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=drop" -s "Time integration/End time=0.4" \
+  > drop.log 2>&1 || fail "scene_ball_drop: $(tail -3 drop.log)"
+"$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever" > cantilever.log 2>&1 ||
+  fail "scene_cantilever: $(tail -3 cantilever.log)"
+"$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever_newmark" \
+  -s "Time integration/Method=explicit newmark" -s "Time integration/Explicit Newmark/Time step=2e-4" \
+  > cantilever_newmark.log 2>&1 || fail "scene_cantilever with Newmark: $(tail -3 cantilever_newmark.log)"
+"$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar" > bar.log 2>&1 || fail "scene_bar_impact: $(tail -3 bar.log)"
+"$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar_penalty" -s "Contact/Mode=penalty" \
+  > bar_penalty.log 2>&1 || fail "scene_bar_impact, penalty: $(tail -3 bar_penalty.log)"
+sed -n '/^## Your own problem/,/^## /p' "$ESTEP_SOURCE_DIR/README.md" | sed -n '/^```$/,/^```$/p' | sed '1d;$d' > readme.prm
+"$ESTEP" readme.prm -s "Output directory=readme" -s "Time integration/End time=0.05" > readme.log 2>&1 ||
+  fail "the README's scene: $(tail -3 readme.log)"
 
 /usr/bin/python3 - <<'PY' || fail "see above"
 import csv, json, os, re, sys
@@ -63,6 +86,53 @@ last = list(csv.DictReader(open("cradle/history.csv")))[-1]
 v = [float(last[f"V{b}_x"]) for b in range(1, 6)]
 expect(v[4] > 0.7 * 5 and all(abs(x) < 0.15 * 5 for x in v[:4]), f"cradle: final velocities {v}")
 print(f"cradle: {s['counters']['steps']} steps, final velocities {[round(x, 3) for x in v]}")
+
+def history(directory):
+    return list(csv.DictReader(open(f"{directory}/history.csv")))
+
+def upward_crossings(rows, column):
+    t = [float(r["time"]) for r in rows]
+    z = [float(r[column]) - float(rows[0][column]) for r in rows]
+    return [t[i - 1] + (t[i] - t[i - 1]) * -z[i - 1] / (z[i] - z[i - 1])
+            for i in range(1, len(z)) if z[i - 1] < 0 <= z[i]]
+
+s = json.load(open("drop/summary.json"))
+rows = history("drop")
+expect(s["status"] == "completed", f"drop: status {s['status']}")
+expect(s["energies"]["terraced energy drift"] < 1e-12, f"drop: drift {s['energies']['terraced energy drift']}")
+expect(max(int(float(r["points behind obstacles"])) for r in rows) == 0, "drop: a vertex behind the floor")
+c = s["contact"]
+falling = [r for r in rows if float(r["time"]) < c["first contact instant"]]
+worst = max(abs(float(r["V1_z"]) - (-0.1 - 9.81 * float(r["time"]))) for r in falling)
+expect(worst < 0.02 * 3.13, f"drop: free fall off v0 - g t by {worst}")
+impact = min(float(r["V1_z"]) for r in rows)
+analytic = (0.1 ** 2 + 2 * 9.81 * 0.5) ** 0.5
+expect(abs(-impact - analytic) < 0.01 * analytic, f"drop: impact speed {-impact}, free fall {analytic}")
+rebound = max(float(r["V1_z"]) for r in rows if float(r["time"]) > c["last contact instant"])
+expect(0.005 <= c["contact duration"] <= 0.03, f"drop: contact duration {c['contact duration']}")
+expect(0.7 <= rebound / -impact <= 1., f"drop: rebound {rebound} after {impact}")
+print(f"drop: {s['counters']['steps']} steps, free fall within {worst:.2e}, impact {-impact:.4f} "
+      f"(free fall {analytic:.4f}), contact {c['contact duration']:.4f}, rebound {rebound:.3f}")
+
+periods = {}
+for run in ("cantilever", "cantilever_newmark"):
+    crossings = upward_crossings(history(run), "body1_z")
+    expect(len(crossings) >= 2, f"{run}: fewer than two periods")
+    periods[run] = (crossings[-1] - crossings[0]) / max(len(crossings) - 1, 1)
+s = json.load(open("cantilever/summary.json"))
+expect(s["problem"]["fixed vertices"] == 13, f"cantilever: {s['problem']['fixed vertices']} fixed vertices")
+expect(s["energies"]["terraced energy drift"] < 1e-12, "cantilever: drift")
+ratio = periods["cantilever"] / periods["cantilever_newmark"]
+expect(abs(ratio - 1) < 0.05, f"cantilever: periods {periods}")
+print(f"cantilever: period {periods['cantilever']:.4f} (Newmark {periods['cantilever_newmark']:.4f})")
+
+s = json.load(open("bar/summary.json"))
+expect(max(int(float(r["points behind obstacles"])) for r in history("bar")) == 0, "bar: a vertex behind the wall")
+duration, estimate = s["contact"]["contact duration"], 2 * 1 / (1000 ** 0.5)
+expect(abs(duration / estimate - 1) < 0.15, f"bar: contact {duration}, 2L/c = {estimate}")
+behind = max(int(float(r["points behind obstacles"])) for r in history("bar_penalty"))
+expect(behind > 0, "bar, penalty: no vertex entered the wall")
+print(f"bar: contact {duration:.4f} (2L/c {estimate:.4f}); penalty: up to {behind} vertices in the wall")
 for message in bad:
     print(message)
 sys.exit(1 if bad else 0)
