@@ -59,7 +59,7 @@ namespace
   };
 
   /**
-   * Free points in 3D (V = 0, masses 1 + i / n), optionally with a fake
+   * Free points in 3D or 2D (V = 0, masses 1 + i / n), optionally with a fake
    * constraint of its own: an event at @p event_s (if <= s_max) with the
    * normal e_x on point 0.
    */
@@ -67,12 +67,14 @@ namespace
   {
   public:
     explicit FreeParticles(const unsigned int    n,
-                           std::optional<double> event_s = std::nullopt)
-      : inv_mass(3 * n)
+                           std::optional<double> event_s = std::nullopt,
+                           const unsigned int    dim     = 3)
+      : inv_mass(dim * n)
       , event_s(event_s)
+      , dim(dim)
     {
-      for (unsigned int i = 0; i < 3 * n; ++i)
-        inv_mass[i] = 1. / (1. + (i / 3) / double(n));
+      for (unsigned int i = 0; i < dim * n; ++i)
+        inv_mass[i] = 1. / (1. + (i / dim) / double(n));
     }
 
     std::string
@@ -84,7 +86,7 @@ namespace
     unsigned int
     spatial_dimension() const override
     {
-      return 3;
+      return dim;
     }
 
     unsigned int
@@ -134,6 +136,7 @@ namespace
   private:
     Vector                inv_mass;
     std::optional<double> event_s;
+    unsigned int          dim;
   };
 
   HalfSpace
@@ -382,6 +385,40 @@ TEST(HalfSpaceObstacles, ContactsAreConservativeInFloatingPoint)
             << " touching bands" << std::endl;
   EXPECT_GT(n_cases, 350u);
   EXPECT_GE(min_distance, 0.);
+}
+
+// In 2D: a point at (1, 1) moving with (-1, -1) towards the line x + y = 0
+// reaches it at s = 1.
+TEST(HalfSpaceObstacles, ContactsIn2D)
+{
+  auto base = std::make_shared<const FreeParticles>(2, std::nullopt, 2);
+  EXPECT_THROW(HalfSpaceObstacles(base,
+                                  {half_space({{0., 0., 0.}}, {{1., 1., 1.}})},
+                                  {0},
+                                  Mode::impenetrability),
+               std::invalid_argument);
+  const HalfSpaceObstacles obstacles(base,
+                                     {half_space({{0., 0., 0.}},
+                                                 {{1., 1., 0.}})},
+                                     {0, 1},
+                                     Mode::impenetrability);
+  Vector                   q(4), v(4);
+  q[0] = q[1] = 1.;
+  v[0] = v[1]  = -1.;
+  q[2]         = 3.;
+  const auto e = obstacles.first_constraint_event(q, v, 2.);
+  ASSERT_TRUE(e);
+  EXPECT_LE(e->s, 1.);
+  EXPECT_GT(e->s, 1. - 1e-14);
+  EXPECT_NEAR(e->normal[0], std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(e->normal[1], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(e->normal[2], 0.);
+  EXPECT_EQ(e->normal[3], 0.);
+  q.add(e->s, v);
+  EXPECT_EQ(obstacles.n_points_behind(q), 0u);
+  EXPECT_GE(obstacles.signed_distance(q, 0, 0), 0.);
+  q.add(1e-3, v);
+  EXPECT_EQ(obstacles.n_points_behind(q), 1u);
 }
 
 TEST(HalfSpaceObstacles, EarliestOfBaseAndObstacleEvents)
