@@ -17,6 +17,7 @@
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
 #   in the exact mode; the penalty mode lets vertices into the wall;
 # - the README's own scene runs as written;
+# - eight balls (898 tetrahedra each) over a floor set up and start conserving;
 # - bad scenes: one clear message each and exit code 1.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
@@ -44,6 +45,8 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
 "$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar" > bar.log 2>&1 || fail "scene_bar_impact: $(tail -3 bar.log)"
 "$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar_penalty" -s "Contact/Mode=penalty" \
   > bar_penalty.log 2>&1 || fail "scene_bar_impact, penalty: $(tail -3 bar_penalty.log)"
+"$ESTEP" "$files/scene_eight_balls.prm" -s "Output directory=eight" -s "Time integration/End time=0.02" \
+  > eight.log 2>&1 || fail "scene_eight_balls: $(tail -3 eight.log)"
 sed -n '/^## Your own problem/,/^## /p' "$ESTEP_SOURCE_DIR/README.md" | sed -n '/^```$/,/^```$/p' | sed '1d;$d' > readme.prm
 "$ESTEP" readme.prm -s "Output directory=readme" -s "Time integration/End time=0.05" > readme.log 2>&1 ||
   fail "the README's scene: $(tail -3 readme.log)"
@@ -77,6 +80,11 @@ for vtm in vtms:
         text = open(f"balls/fields/{piece}").read()
         for field in ("displacement", "velocity", "cauchy_stress", "von_mises_stress", "J"):
             expect(f'Name="{field}"' in text, f"{piece} lacks {field}")
+
+s = json.load(open("eight/summary.json"))
+expect(s["status"] == "completed" and s["problem"]["bodies"] == 8 and s["problem"]["cells"] == 8 * 898,
+       f"eight balls: {s['status']}, {s['problem']}")
+expect(s["energies"]["terraced energy drift"] < 1e-12, "eight balls: drift")
 
 s = json.load(open("cradle/summary.json"))
 expect(s["status"] == "completed", f"cradle: status {s['status']}")
@@ -150,6 +158,9 @@ expect_error() {
 }
 cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time integration/End time=0.01")
 expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
+expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
+expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> is not six numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
+expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Mode=none"
 expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
 expect_error "Scene/Body 3/Supports: every vertex of the body is fixed" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=1"
 expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has these ids" "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=7"
