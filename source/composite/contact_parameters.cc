@@ -3,6 +3,8 @@
 
 #include <estep/composite/contact_parameters.h>
 
+#include <stdexcept>
+
 namespace estep
 {
   void
@@ -56,6 +58,33 @@ namespace estep
     AssertThrow(ccd_tolerance > 0.,
                 dealii::ExcMessage(
                   "Contact: the collision tolerance must be positive."));
+    // No setting may be silently ignored.
+    const ContactParameters defaults;
+    const std::string       with = " (Mode = " + mode_name(mode) + ").";
+    if (mode != Mode::penalty &&
+        penalty_parameter != defaults.penalty_parameter)
+      throw std::runtime_error(
+        "Contact/Penalty parameter: only Mode = penalty uses it" + with);
+    if (mode != Mode::impenetrability &&
+        ccd_tolerance != defaults.ccd_tolerance)
+      throw std::runtime_error(
+        "Contact/Collision tolerance: only Mode = impenetrability uses it" +
+        with);
+    if (mode == Mode::none && self_contact)
+      throw std::runtime_error(
+        "Contact/Self contact: there is no contact at all" + with);
+  }
+
+
+
+  bool
+  ContactParameters::is_default() const
+  {
+    const ContactParameters defaults;
+    return mode == defaults.mode &&
+           penalty_parameter == defaults.penalty_parameter &&
+           self_contact == defaults.self_contact &&
+           ccd_tolerance == defaults.ccd_tolerance;
   }
 
 

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/composite/contact_parameters.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>
@@ -43,6 +44,7 @@ namespace estep
       const double max = Double::max_double_value;
       const List   point(Double(-max, max), 3, 3, ",");
 
+      ContactParameters::declare_parameters(prm);
       prm.enter_subsection("Elastic body");
       {
         prm.enter_subsection("Mesh");
@@ -101,6 +103,13 @@ namespace estep
     Problem
     create_elastic_body_problem(dealii::ParameterHandler &prm)
     {
+      ContactParameters contact;
+      contact.parse_parameters(prm);
+      if (!contact.is_default())
+        throw std::runtime_error(
+          "Contact: the elastic body problem has no contact; for bodies in "
+          "contact or obstacles, set Problem/System = scene.");
+
       prm.enter_subsection("Elastic body");
 
       MeshDescription mesh;

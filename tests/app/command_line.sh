@@ -154,6 +154,7 @@ cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mes
 expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
 expect 1 "initial velocity of the elastic body is not finite" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 expect 1 "generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
+expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "Contact/Mode=impenetrability"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
 expect 1 "has no fields to write" -- run.prm -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"

@@ -44,6 +44,7 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
   > cantilever_newmark.log 2>&1 || fail "scene_cantilever with Newmark: $(tail -3 cantilever_newmark.log)"
 "$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar" > bar.log 2>&1 || fail "scene_bar_impact: $(tail -3 bar.log)"
 "$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar_penalty" -s "Contact/Mode=penalty" \
+  -s "Contact/Penalty parameter=1e-6" \
   > bar_penalty.log 2>&1 || fail "scene_bar_impact, penalty: $(tail -3 bar_penalty.log)"
 "$ESTEP" "$files/scene_eight_balls.prm" -s "Output directory=eight" -s "Time integration/End time=0.02" \
   > eight.log 2>&1 || fail "scene_eight_balls: $(tail -3 eight.log)"
@@ -160,6 +161,7 @@ cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time int
 expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
 expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
 expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> is not six numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
+expect_error "Contact/Penalty parameter: only Mode = penalty uses it \(Mode = impenetrability\)" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Penalty parameter=1e-5"
 expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Mode=none"
 expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
 expect_error "Scene/Body 3/Supports: every vertex of the body is fixed" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=1"

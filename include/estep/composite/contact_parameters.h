@@ -48,9 +48,16 @@ namespace estep
     static void
     declare_parameters(dealii::ParameterHandler &prm);
 
-    /** Read the subsection declared by declare_parameters(). */
+    /** Read the subsection declared by declare_parameters(). A setting that
+     * the mode does not use (a penalty parameter without the penalty mode,
+     * ...) is an error: nothing is silently ignored. */
     void
     parse_parameters(dealii::ParameterHandler &prm);
+
+    /** Whether every entry has its default value (for a problem without
+     * contact, anything else is an error). */
+    bool
+    is_default() const;
 
     /** "none", "penalty" or "impenetrability". */
     static std::string
