@@ -317,8 +317,8 @@ namespace estep
     /**
      * Remove what an earlier run left in @p directory that this run might not
      * overwrite, so that nothing there describes another run: field
-     * snapshots and their series files, the step histogram, the log. Only
-     * estep's own file names are touched.
+     * snapshots, the obstacles and their series files, the step histogram,
+     * the log. Only estep's own file names are touched.
      */
     void
     remove_earlier_outputs(const std::filesystem::path &directory)
@@ -331,7 +331,7 @@ namespace estep
         for (const auto &entry : std::filesystem::directory_iterator(fields))
           {
             const std::string name = entry.path().filename().string();
-            if (name.rfind("solution-", 0) == 0)
+            if (name.rfind("solution-", 0) == 0 || name == "obstacles.vtu")
               std::filesystem::remove(entry.path());
           }
     }

@@ -65,4 +65,26 @@ namespace estep
     to_bodies(q, v, q_bodies, v_bodies);
     bodies->body_state(q_bodies, v_bodies, b, q_b, v_b);
   }
+
+
+
+  void
+  Scene::add_obstacle_surface(const std::vector<double>       &points,
+                              const std::vector<unsigned int> &triangles)
+  {
+    const unsigned int first = obstacle_points.size() / 3;
+    obstacle_points.insert(obstacle_points.end(), points.begin(), points.end());
+    for (const unsigned int p : triangles)
+      obstacle_triangles.push_back(first + p);
+  }
+
+
+
+  void
+  Scene::obstacle_surface(std::vector<double>       &points,
+                          std::vector<unsigned int> &triangles) const
+  {
+    points    = obstacle_points;
+    triangles = obstacle_triangles;
+  }
 } // namespace estep

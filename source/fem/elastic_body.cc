@@ -512,6 +512,16 @@ namespace estep
 
 
 
+  void
+  ElasticBodies::obstacle_surface(std::vector<double>       &points,
+                                  std::vector<unsigned int> &triangles) const
+  {
+    points.clear();
+    triangles.clear();
+  }
+
+
+
   unsigned int
   ElasticBody::n_bodies() const
   {

@@ -56,6 +56,8 @@ namespace estep
     const double                interval;
     double                      next_time;
     const dealii::MappingFE<3>  mapping;
+    /** Whether the system has obstacles to draw (fields/obstacles.vtu). */
+    bool has_obstacles = false;
     /** Each body's mesh, encoded once (format vtu). */
     std::vector<std::unique_ptr<VtuFile>>       vtu;
     std::vector<std::pair<double, std::string>> pvd_records;
@@ -94,7 +96,24 @@ namespace estep
   void
   FieldOutput::start()
   {
-    std::filesystem::create_directories(implementation->directory / "fields");
+    Implementation &self = *implementation;
+    std::filesystem::create_directories(self.directory / "fields");
+    // The obstacles do not move: one file, listed in every snapshot.
+    std::vector<double>       points;
+    std::vector<unsigned int> triangles;
+    self.bodies.obstacle_surface(points, triangles);
+    self.has_obstacles = !triangles.empty();
+    if (self.has_obstacles && self.format == Format::vtu)
+      {
+        const std::filesystem::path file =
+          self.directory / "fields" / "obstacles.vtu";
+        std::ofstream out(file);
+        VtuFile(points, triangles, 3).write(out, 0., 0, {}, {});
+        out.close();
+        if (!out)
+          throw std::runtime_error("Field output: cannot write <" +
+                                   file.string() + ">.");
+      }
     if (implementation->format == Format::hdf5)
       start_mpi();
   }
@@ -201,7 +220,7 @@ namespace estep
                                        file.string() + ">.");
           }
         std::string series_entry = "fields/" + pieces[0];
-        if (n_bodies > 1)
+        if (n_bodies > 1 || self.has_obstacles)
           {
             // The bodies of one snapshot as a multiblock data set.
             std::snprintf(name, sizeof(name), "solution-%05u.vtm", n);
@@ -212,6 +231,9 @@ namespace estep
             for (unsigned int b = 0; b < n_bodies; ++b)
               vtm << "    <DataSet index=\"" << b << "\" name=\"body " << b + 1
                   << "\" file=\"" << pieces[b] << "\"/>\n";
+            if (self.has_obstacles)
+              vtm << "    <DataSet index=\"" << n_bodies
+                  << "\" name=\"obstacles\" file=\"obstacles.vtu\"/>\n";
             vtm << "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
             write_file_atomically((self.directory / "fields" / name).string(),
                                   vtm.str());

@@ -122,17 +122,22 @@ namespace estep
 
 
   VtuFile::VtuFile(const std::vector<double>       &points,
-                   const std::vector<unsigned int> &tetrahedra)
+                   const std::vector<unsigned int> &tetrahedra,
+                   const unsigned int               points_per_cell)
     : n_points(points.size() / 3)
-    , n_cells(tetrahedra.size() / 4)
+    , n_cells(tetrahedra.size() / points_per_cell)
   {
-    if (points.size() % 3 != 0 || tetrahedra.size() % 4 != 0)
+    if (points_per_cell != 3 && points_per_cell != 4)
       throw std::invalid_argument(
-        "VtuFile: points need 3 coordinates, tetrahedra 4 points each.");
+        "VtuFile: cells are triangles (3 points) or tetrahedra (4).");
+    if (points.size() % 3 != 0 || tetrahedra.size() % points_per_cell != 0)
+      throw std::invalid_argument("VtuFile: points need 3 coordinates, cells " +
+                                  std::to_string(points_per_cell) +
+                                  " points each.");
     for (const unsigned int p : tetrahedra)
       if (p >= n_points)
         throw std::invalid_argument(
-          "VtuFile: a tetrahedron refers to a point that does not exist.");
+          "VtuFile: a cell refers to a point that does not exist.");
     const std::vector<float> xyz = as_float(points);
     encoded_points = encode(xyz.data(), xyz.size() * sizeof(float));
     const std::vector<std::int32_t> connectivity(tetrahedra.begin(),
@@ -141,10 +146,12 @@ namespace estep
       encode(connectivity.data(), connectivity.size() * sizeof(std::int32_t));
     std::vector<std::int32_t> offsets(n_cells);
     for (unsigned int e = 0; e < n_cells; ++e)
-      offsets[e] = 4 * (e + 1);
+      offsets[e] = points_per_cell * (e + 1);
     encoded_offsets =
       encode(offsets.data(), offsets.size() * sizeof(std::int32_t));
-    const std::vector<std::uint8_t> types(n_cells, 10); // VTK_TETRA
+    // VTK_TRIANGLE or VTK_TETRA
+    const std::vector<std::uint8_t> types(n_cells,
+                                          points_per_cell == 3 ? 5 : 10);
     encoded_types = encode(types.data(), types.size());
   }
 

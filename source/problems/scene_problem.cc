@@ -76,6 +76,52 @@ namespace estep
       return planes;
     }
 
+    /**
+     * A square of the plane of @p plane, for output: centred at the
+     * projection of the centre of the box around the points of @p q, twice
+     * as wide as that box (at least 1). @p corners receives its four corners.
+     */
+    void
+    draw_half_space(const HalfSpace     &plane,
+                    const Vector        &q,
+                    std::vector<double> &corners)
+    {
+      Point3 lower = {{q[0], q[1], q[2]}}, upper = lower;
+      for (unsigned int i = 0; 3 * i < q.size(); ++i)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            lower[c] = std::min(lower[c], q[3 * i + c]);
+            upper[c] = std::max(upper[c], q[3 * i + c]);
+          }
+      const Point3 &n = plane.normal;
+      Point3        centre;
+      double        size = 0.5, height = 0.;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          centre[c] = 0.5 * (lower[c] + upper[c]);
+          size      = std::max(size, upper[c] - lower[c]);
+          height += (centre[c] - plane.point[c]) * n[c];
+        }
+      // Two unit vectors of the plane.
+      const Point3 a =
+        std::abs(n[0]) < 0.9 ? Point3{{1., 0., 0.}} : Point3{{0., 1., 0.}};
+      Point3       t1 = {{a[1] * n[2] - a[2] * n[1],
+                          a[2] * n[0] - a[0] * n[2],
+                          a[0] * n[1] - a[1] * n[0]}};
+      const double norm =
+        std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+      for (double &x : t1)
+        x /= norm;
+      const Point3 t2 = {{n[1] * t1[2] - n[2] * t1[1],
+                          n[2] * t1[0] - n[0] * t1[2],
+                          n[0] * t1[1] - n[1] * t1[0]}};
+      for (const auto &[s1, s2] :
+           {std::pair{-1., -1.}, {1., -1.}, {1., 1.}, {-1., 1.}})
+        for (unsigned int c = 0; c < 3; ++c)
+          corners.push_back(centre[c] - height * n[c] +
+                            size * (s1 * t1[c] + s2 * t2[c]));
+    }
+
     std::string
     body_section(const unsigned int b)
     {
@@ -549,10 +595,17 @@ namespace estep
         .add("gravity", std::vector<double>(gravity.begin(), gravity.end()))
         .add("obstacles", static_cast<unsigned int>(planes.size()))
         .add("contact", ContactParameters::mode_name(contact.mode));
-      problem.system = std::make_unique<Scene>(system,
-                                               bodies_system,
-                                               std::move(to_bodies),
-                                               "scene");
+      auto scene = std::make_unique<Scene>(system,
+                                           bodies_system,
+                                           std::move(to_bodies),
+                                           "scene");
+      for (const HalfSpace &plane : planes)
+        {
+          std::vector<double> corners;
+          draw_half_space(plane, q0, corners);
+          scene->add_obstacle_surface(corners, {0, 1, 2, 0, 2, 3});
+        }
+      problem.system = std::move(scene);
       return problem;
     }
   } // namespace

@@ -17,6 +17,7 @@
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
 #   in the exact mode; the penalty mode lets vertices into the wall;
 # - the README's own scene runs as written;
+# - a scene's obstacles are written once (fields/obstacles.vtu) and listed in every snapshot;
 # - eight balls (898 tetrahedra each) over a floor set up and start conserving;
 # - bad scenes: one clear message each and exit code 1.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
@@ -46,6 +47,9 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
 "$ESTEP" "$files/scene_bar_impact.prm" -s "Output directory=bar_penalty" -s "Contact/Mode=penalty" \
   -s "Contact/Penalty parameter=1e-6" \
   > bar_penalty.log 2>&1 || fail "scene_bar_impact, penalty: $(tail -3 bar_penalty.log)"
+"$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=drop_fields" -s "Time integration/End time=0.05" \
+  -s "Postprocessors/List=history, field output" -s "Postprocessors/Field output/Interval=0.025" \
+  > drop_fields.log 2>&1 || fail "scene_ball_drop with field output: $(tail -3 drop_fields.log)"
 "$ESTEP" "$files/scene_eight_balls.prm" -s "Output directory=eight" -s "Time integration/End time=0.02" \
   > eight.log 2>&1 || fail "scene_eight_balls: $(tail -3 eight.log)"
 sed -n '/^## Your own problem/,/^## /p' "$ESTEP_SOURCE_DIR/README.md" | sed -n '/^```$/,/^```$/p' | sed '1d;$d' > readme.prm
@@ -81,6 +85,11 @@ for vtm in vtms:
         text = open(f"balls/fields/{piece}").read()
         for field in ("displacement", "velocity", "cauchy_stress", "von_mises_stress", "J"):
             expect(f'Name="{field}"' in text, f"{piece} lacks {field}")
+
+vtm = open("drop_fields/fields/solution-00001.vtm").read()
+expect('name="obstacles" file="obstacles.vtu"' in vtm, "drop: the snapshot does not list the obstacles")
+expect('NumberOfPoints="4" NumberOfCells="2"' in open("drop_fields/fields/obstacles.vtu").read(),
+       "drop: obstacles.vtu is not the floor's square")
 
 s = json.load(open("eight/summary.json"))
 expect(s["status"] == "completed" and s["problem"]["bodies"] == 8 and s["problem"]["cells"] == 8 * 898,

@@ -61,7 +61,19 @@ namespace estep
                Vector            &q_b,
                Vector            &v_b) const override;
 
+    /** Add a rigid obstacle's surface (for output): @p points (x, y, z each)
+     * and @p triangles (indices into @p points). */
+    void
+    add_obstacle_surface(const std::vector<double>       &points,
+                         const std::vector<unsigned int> &triangles);
+
+    void
+    obstacle_surface(std::vector<double>       &points,
+                     std::vector<unsigned int> &triangles) const override;
+
   private:
+    std::vector<double>                  obstacle_points;
+    std::vector<unsigned int>            obstacle_triangles;
     std::shared_ptr<const ElasticBodies> bodies;
     StateMap                             to_bodies;
     std::string                          scene_name;

@@ -3,6 +3,8 @@
 
 #include <estep/systems/mechanical_system.h>
 
+#include <vector>
+
 namespace estep
 {
   class ElasticBody;
@@ -33,6 +35,15 @@ namespace estep
                const unsigned int b,
                Vector            &q_b,
                Vector            &v_b) const = 0;
+
+    /**
+     * The rigid obstacles to draw with the bodies, as a triangle surface:
+     * @p points (x, y, z each) and @p triangles (three point indices each).
+     * The default has none.
+     */
+    virtual void
+    obstacle_surface(std::vector<double>       &points,
+                     std::vector<unsigned int> &triangles) const;
   };
 } // namespace estep
 

@@ -33,11 +33,13 @@ namespace estep
     };
 
     /**
-     * The mesh: @p points holds x, y, z of each point; @p tetrahedra the four
-     * point indices of each cell.
+     * The mesh: @p points holds x, y, z of each point; @p tetrahedra the
+     * point indices of each cell, @p points_per_cell of them (4: tetrahedra;
+     * 3: triangles, for surfaces).
      */
     VtuFile(const std::vector<double>       &points,
-            const std::vector<unsigned int> &tetrahedra);
+            const std::vector<unsigned int> &tetrahedra,
+            const unsigned int               points_per_cell = 4);
 
     /**
      * Writes one file: the mesh with the given point and cell fields, and the
