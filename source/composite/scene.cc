@@ -68,6 +68,22 @@ namespace estep
 
 
 
+  unsigned int
+  Scene::n_points_in_obstacles(const Vector &q) const
+  {
+    return obstacle_count ? obstacle_count(q) : 0;
+  }
+
+
+
+  void
+  Scene::set_obstacle_count(std::function<unsigned int(const Vector &)> count)
+  {
+    obstacle_count = std::move(count);
+  }
+
+
+
   void
   Scene::add_obstacle_surface(const std::vector<double>       &points,
                               const std::vector<unsigned int> &triangles)

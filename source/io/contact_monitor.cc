@@ -53,14 +53,17 @@ namespace estep
 
 
 
-  ContactMonitor::ContactMonitor(const ContactSystem  &system,
-                                 const TimeIntegrator &integrator,
-                                 const Vector         &q,
-                                 const Vector         &v,
-                                 StateMap              to_contact)
+  ContactMonitor::ContactMonitor(
+    const ContactSystem                        &system,
+    const TimeIntegrator                       &integrator,
+    const Vector                               &q,
+    const Vector                               &v,
+    StateMap                                    to_contact,
+    std::function<unsigned int(const Vector &)> obstacle_count)
     : system(system)
     , integrator(integrator)
     , to_contact(std::move(to_contact))
+    , obstacle_count(std::move(obstacle_count))
   {
     this->to_contact(q, v, q0, v0);
   }
@@ -100,11 +103,15 @@ namespace estep
   {
     Vector q, v;
     current_state(q, v);
-    const unsigned int  pairs   = system.n_intersecting_pairs(q);
-    const std::uint64_t events  = constraint_events(integrator);
-    const bool          contact = pairs > 0 || events > constraint_events_seen;
-    constraint_events_seen      = events;
-    largest_pair_count          = std::max(largest_pair_count, pairs);
+    const unsigned int  pairs  = system.n_intersecting_pairs(q);
+    const std::uint64_t events = constraint_events(integrator);
+    const unsigned int  inside =
+      obstacle_count ? obstacle_count(integrator.position()) : 0;
+    largest_obstacle_count = std::max(largest_obstacle_count, inside);
+    const bool contact =
+      pairs > 0 || inside > 0 || events > constraint_events_seen;
+    constraint_events_seen = events;
+    largest_pair_count     = std::max(largest_pair_count, pairs);
     steps_with_pairs += (pairs > 0);
 
     const double t = integrator.time(), step = t - integrator.previous_time();
@@ -169,6 +176,8 @@ namespace estep
   {
     JsonObject result;
     result.add("largest number of intersecting face pairs", largest_pair_count)
+      .add("largest number of vertices inside obstacles",
+           largest_obstacle_count)
       .add("steps ending with intersecting face pairs", steps_with_pairs)
       .add("contact instants", n_contact_instants);
     if (n_contact_instants > 0)
@@ -229,11 +238,13 @@ namespace estep
                                                 run.v0);
       if (const auto *scene = dynamic_cast<const Scene *>(&system);
           scene != nullptr && scene->contact_system() != nullptr)
-        return std::make_unique<ContactMonitor>(*scene->contact_system(),
-                                                run.integrator,
-                                                run.q0,
-                                                run.v0,
-                                                scene->state_map());
+        return std::make_unique<ContactMonitor>(
+          *scene->contact_system(),
+          run.integrator,
+          run.q0,
+          run.v0,
+          scene->state_map(),
+          [scene](const Vector &q) { return scene->n_points_in_obstacles(q); });
       return nullptr;
     }
   } // namespace

@@ -537,9 +537,11 @@ namespace estep
         }
 
       // Decorations: obstacles, gravity, supports.
+      std::shared_ptr<const HalfSpaceObstacles> obstacles;
+      std::shared_ptr<const SupportedSystem>    supported;
       if (!planes.empty())
         {
-          auto obstacles = std::make_shared<HalfSpaceObstacles>(
+          obstacles = std::make_shared<HalfSpaceObstacles>(
             system,
             planes,
             boundary_points(*contact_system),
@@ -568,10 +570,10 @@ namespace estep
       Problem problem;
       if (!fixed.empty())
         {
-          auto supported = std::make_shared<SupportedSystem>(system, fixed, q0);
-          problem.q0     = supported->restrict(q0);
-          problem.v0     = supported->restrict(v0);
-          to_bodies      = [supported](const Vector &q,
+          supported  = std::make_shared<SupportedSystem>(system, fixed, q0);
+          problem.q0 = supported->restrict(q0);
+          problem.v0 = supported->restrict(v0);
+          to_bodies  = [supported](const Vector &q,
                                   const Vector &v,
                                   Vector       &qb,
                                   Vector       &vb) {
@@ -599,6 +601,11 @@ namespace estep
                                            bodies_system,
                                            std::move(to_bodies),
                                            "scene");
+      if (obstacles)
+        scene->set_obstacle_count([obstacles, supported](const Vector &q) {
+          return obstacles->n_points_behind(supported ? supported->expand(q) :
+                                                        q);
+        });
       for (const HalfSpace &plane : planes)
         {
           std::vector<double> corners;

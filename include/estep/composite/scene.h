@@ -61,6 +61,16 @@ namespace estep
                Vector            &q_b,
                Vector            &v_b) const override;
 
+    /** How many points of the state @p q of the scene lie inside an
+     * obstacle (penalty contact with obstacles shows this way; 0 without
+     * obstacles). */
+    unsigned int
+    n_points_in_obstacles(const Vector &q) const;
+
+    /** Set the count n_points_in_obstacles() returns. */
+    void
+    set_obstacle_count(std::function<unsigned int(const Vector &)> count);
+
     /** Add a rigid obstacle's surface (for output): @p points (x, y, z each)
      * and @p triangles (indices into @p points). */
     void
@@ -72,12 +82,13 @@ namespace estep
                      std::vector<unsigned int> &triangles) const override;
 
   private:
-    std::vector<double>                  obstacle_points;
-    std::vector<unsigned int>            obstacle_triangles;
-    std::shared_ptr<const ElasticBodies> bodies;
-    StateMap                             to_bodies;
-    std::string                          scene_name;
-    mutable Vector                       q_bodies, v_bodies;
+    std::function<unsigned int(const Vector &)> obstacle_count;
+    std::vector<double>                         obstacle_points;
+    std::vector<unsigned int>                   obstacle_triangles;
+    std::shared_ptr<const ElasticBodies>        bodies;
+    StateMap                                    to_bodies;
+    std::string                                 scene_name;
+    mutable Vector                              q_bodies, v_bodies;
   };
 } // namespace estep
 

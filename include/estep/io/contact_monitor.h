@@ -43,11 +43,13 @@ namespace estep
 
     /** The monitor of @p system inside the integrated system, whose states
      * @p to_contact maps to states of @p system. */
-    ContactMonitor(const ContactSystem  &system,
-                   const TimeIntegrator &integrator,
-                   const Vector         &q0,
-                   const Vector         &v0,
-                   StateMap              to_contact);
+    ContactMonitor(
+      const ContactSystem                        &system,
+      const TimeIntegrator                       &integrator,
+      const Vector                               &q0,
+      const Vector                               &v0,
+      StateMap                                    to_contact,
+      std::function<unsigned int(const Vector &)> obstacle_count = nullptr);
 
     void
     after_step(const TimeIntegrator &integrator) override;
@@ -106,10 +108,14 @@ namespace estep
     const ContactSystem  &system;
     const TimeIntegrator &integrator;
     StateMap              to_contact;
-    Vector                q0, v0;
-    unsigned int          largest_pair_count     = 0;
-    std::uint64_t         steps_with_pairs       = 0;
-    std::uint64_t         constraint_events_seen = 0;
+    /** Points of the integrated system's state inside obstacles (or
+     * nullptr). */
+    std::function<unsigned int(const Vector &)> obstacle_count;
+    unsigned int                                largest_obstacle_count = 0;
+    Vector                                      q0, v0;
+    unsigned int                                largest_pair_count     = 0;
+    std::uint64_t                               steps_with_pairs       = 0;
+    std::uint64_t                               constraint_events_seen = 0;
     /** Whether the previous step end was a contact instant. */
     bool          in_contact                = false;
     std::uint64_t n_contact_instants        = 0;
