@@ -534,6 +534,7 @@ namespace estep
   ElasticBody::body(const unsigned int b) const
   {
     AssertIndexRange(b, 1);
+    (void)b;
     return *this;
   }
 
@@ -547,6 +548,7 @@ namespace estep
                           Vector            &v_b) const
   {
     AssertIndexRange(b, 1);
+    (void)b;
     q_b = q;
     v_b = v;
   }
