@@ -203,8 +203,19 @@ namespace estep
     std::vector<std::shared_ptr<const ElasticBody>> bodies_in,
     const ContactParameters                        &parameters,
     const std::string                              &name)
+    : ContactSystem(std::move(bodies_in), {}, parameters, name)
+  {}
+
+
+
+  ContactSystem::ContactSystem(
+    std::vector<std::shared_ptr<const ElasticBody>> bodies_in,
+    std::vector<StaticSurface>                      surfaces_in,
+    const ContactParameters                        &parameters,
+    const std::string                              &name)
     : system_name(name)
     , bodies(std::move(bodies_in))
+    , surfaces(std::move(surfaces_in))
     , contact_parameters(parameters)
   {
     if (bodies.empty())
@@ -217,9 +228,18 @@ namespace estep
         offsets.push_back(n_points);
         n_points += body->n_vertices();
       }
+    for (const StaticSurface &surface : surfaces)
+      {
+        surface.check();
+        offsets.push_back(n_points);
+        n_points += surface.n_points();
+      }
     offsets.push_back(n_points);
 
+    // Surface points: inverse mass 1 (they are meant to be held fixed).
     inv_mass.reinit(3 * n_points);
+    for (unsigned int i = 3 * n_body_points(); i < inv_mass.size(); ++i)
+      inv_mass[i] = 1.;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         const Vector &m = bodies[b]->inverse_mass();
@@ -257,8 +277,29 @@ namespace estep
             triangle_body.push_back(b);
           }
       }
+    const unsigned int n_body_triangles = triangles.size();
+    for (unsigned int s = 0; s < surfaces.size(); ++s)
+      for (const auto &t : surfaces[s].triangles)
+        {
+          const unsigned int first = surface_point_offset(s);
+          triangles.push_back({{first + t[0], first + t[1], first + t[2]}});
+          triangle_body.push_back(bodies.size() + s);
+        }
+    // Exclusion groups: without self-contact, one per body; all surfaces
+    // together form one more (with self-contact, every body triangle has a
+    // group of its own). None at all with self-contact and no surfaces.
     if (!contact_parameters.self_contact)
-      exclusion_groups = triangle_body;
+      {
+        exclusion_groups = triangle_body;
+        for (unsigned int t = n_body_triangles; t < triangles.size(); ++t)
+          exclusion_groups[t] = bodies.size();
+      }
+    else if (!surfaces.empty())
+      {
+        exclusion_groups.resize(triangles.size());
+        for (unsigned int t = 0; t < triangles.size(); ++t)
+          exclusion_groups[t] = std::min(t, n_body_triangles);
+      }
 
     if (contact_parameters.mode == ContactParameters::Mode::penalty)
       {
@@ -453,8 +494,68 @@ namespace estep
 
 
 
+  unsigned int
+  ContactSystem::n_body_points() const
+  {
+    return offsets[bodies.size()];
+  }
+
+
+
+  unsigned int
+  ContactSystem::n_surfaces() const
+  {
+    return surfaces.size();
+  }
+
+
+
+  const StaticSurface &
+  ContactSystem::surface(const unsigned int s) const
+  {
+    return surfaces.at(s);
+  }
+
+
+
+  unsigned int
+  ContactSystem::surface_point_offset(const unsigned int s) const
+  {
+    if (s >= surfaces.size())
+      throw std::out_of_range("ContactSystem::surface_point_offset: no "
+                              "surface " +
+                              std::to_string(s));
+    return offsets[bodies.size() + s];
+  }
+
+
+
+  std::vector<unsigned int>
+  ContactSystem::surface_points() const
+  {
+    std::vector<unsigned int> points;
+    for (unsigned int i = n_body_points(); i < offsets.back(); ++i)
+      points.push_back(i);
+    return points;
+  }
+
+
+
   Vector
   ContactSystem::concatenate(const std::vector<Vector> &per_body) const
+  {
+    Vector x = concatenate_velocities(per_body);
+    for (unsigned int s = 0; s < surfaces.size(); ++s)
+      for (unsigned int i = 0; i < surfaces[s].points.size(); ++i)
+        x[3 * surface_point_offset(s) + i] = surfaces[s].points[i];
+    return x;
+  }
+
+
+
+  Vector
+  ContactSystem::concatenate_velocities(
+    const std::vector<Vector> &per_body) const
   {
     if (per_body.size() != bodies.size())
       throw std::invalid_argument("ContactSystem::concatenate: one vector per "
@@ -586,6 +687,6 @@ namespace estep
   RigidBodyMotion
   ContactSystem::system_motion(const Vector &q, const Vector &v) const
   {
-    return rigid_body_motion(inv_mass, q, v, 0, offsets.back());
+    return rigid_body_motion(inv_mass, q, v, 0, n_body_points());
   }
 } // namespace estep

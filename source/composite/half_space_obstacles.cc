@@ -727,8 +727,10 @@ namespace estep
   boundary_points(const ContactSystem &system)
   {
     std::vector<unsigned int> points;
-    for (const auto &t : system.boundary_triangles())
-      points.insert(points.end(), t.begin(), t.end());
+    const auto               &triangles = system.boundary_triangles();
+    for (unsigned int t = 0; t < triangles.size(); ++t)
+      if (system.triangle_bodies()[t] < system.n_bodies())
+        points.insert(points.end(), triangles[t].begin(), triangles[t].end());
     std::sort(points.begin(), points.end());
     points.erase(std::unique(points.begin(), points.end()), points.end());
     return points;

@@ -1,4 +1,3 @@
-#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
@@ -10,6 +9,7 @@
 #include <estep/composite/gravity.h>
 #include <estep/composite/half_space_obstacles.h>
 #include <estep/composite/scene.h>
+#include <estep/composite/static_surface.h>
 #include <estep/composite/supported_system.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
@@ -20,7 +20,6 @@
 
 #include <array>
 #include <cmath>
-#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -290,6 +289,14 @@ namespace estep
         "Rigid half-spaces, separated by ';', each as six numbers 'p_x, p_y, "
         "p_z, n_x, n_y, n_z': a point p of its plane and the normal n "
         "pointing out of the obstacle (towards the bodies).");
+      prm.declare_entry(
+        "Surface files",
+        "",
+        dealii::Patterns::Anything(),
+        "Rigid obstacles given as triangle surfaces, a comma-separated list "
+        "of files: ASCII STL (.stl) or gmsh surface meshes of triangles "
+        "(.msh), read as they are (no placement; paths relative to the "
+        "working directory). The bodies touch them from either side.");
       prm.leave_subsection();
       prm.leave_subsection();
       ContactParameters::declare_parameters(prm);
@@ -472,13 +479,31 @@ namespace estep
           prm.leave_subsection();
         }
       prm.enter_subsection("Obstacles");
-      const std::string half_spaces = prm.get("Half-spaces");
+      const std::string              half_spaces = prm.get("Half-spaces");
+      const std::vector<std::string> surface_files =
+        dealii::Utilities::split_string_list(prm.get("Surface files"), ',');
       prm.leave_subsection();
       prm.leave_subsection();
       ContactParameters contact;
       contact.parse_parameters(prm);
 
       const std::vector<HalfSpace> planes = parse_half_spaces(half_spaces);
+      std::vector<StaticSurface>   surfaces;
+      unsigned int                 n_surface_triangles = 0;
+      for (const std::string &file : surface_files)
+        {
+          try
+            {
+              surfaces.push_back(read_static_surface(file));
+            }
+          catch (const std::exception &e)
+            {
+              throw std::runtime_error("Scene/Obstacles/Surface files: " +
+                                       std::string(e.what()));
+            }
+          n_surface_triangles += surfaces.back().triangles.size();
+        }
+      const bool has_obstacles = !planes.empty() || !surfaces.empty();
 
       std::vector<std::shared_ptr<const ElasticBody>> body_list;
       std::vector<Vector>                             q, v;
@@ -490,11 +515,11 @@ namespace estep
         }
       const bool contact_on = contact.mode != ContactParameters::Mode::none;
       if (contact_on && n_bodies == 1 && !contact.self_contact &&
-          planes.empty())
+          !has_obstacles)
         throw std::runtime_error(
           "Contact/Mode: a scene of one body without obstacles has nothing "
           "to contact; set Mode = none (or Self contact = true).");
-      if (!contact_on && !planes.empty())
+      if (!contact_on && has_obstacles)
         throw std::runtime_error(
           "Scene/Obstacles: the obstacles need a contact model; set "
           "Contact/Mode = impenetrability or penalty.");
@@ -514,18 +539,26 @@ namespace estep
         }
       else
         {
-          contact_system =
-            std::make_shared<ContactSystem>(body_list, contact, "scene");
-          system        = contact_system;
-          bodies_system = contact_system;
-          q0            = contact_system->concatenate(q);
-          v0            = contact_system->concatenate(v);
+          contact_system = std::make_shared<ContactSystem>(body_list,
+                                                           surfaces,
+                                                           contact,
+                                                           "scene");
+          system         = contact_system;
+          bodies_system  = contact_system;
+          q0             = contact_system->concatenate(q);
+          v0             = contact_system->concatenate_velocities(v);
           for (unsigned int b = 0; b < n_bodies; ++b)
             offsets[b] = contact_system->point_offset(b);
           if (const auto overlaps = contact_system->intersecting_bodies(q0);
               !overlaps.empty())
             {
               const auto [b1, b2] = overlaps.front();
+              if (b2 >= n_bodies)
+                throw std::runtime_error(
+                  "Scene: " + body_section(b1) + " intersects obstacle " +
+                  contact_system->surface(b2 - n_bodies).name +
+                  " at t = 0 (their triangles intersect); move the body or "
+                  "the surface.");
               throw std::runtime_error(
                 b1 == b2 ?
                   "Scene/" + body_section(b1) +
@@ -562,6 +595,10 @@ namespace estep
       for (unsigned int b = 0; b < n_bodies; ++b)
         for (const unsigned int i : bodies[b].fixed_points)
           fixed.push_back(offsets[b] + i);
+      // The surfaces' points never move.
+      if (contact_system)
+        for (const unsigned int i : contact_system->surface_points())
+          fixed.push_back(i);
       Scene::StateMap to_bodies =
         [](const Vector &q, const Vector &v, Vector &qb, Vector &vb) {
           qb = q;
@@ -593,9 +630,14 @@ namespace estep
         n_cells += b->n_cells();
       problem.description.add("bodies", n_bodies)
         .add("cells", n_cells)
-        .add("fixed vertices", static_cast<unsigned int>(fixed.size()))
+        .add("fixed vertices",
+             static_cast<unsigned int>(
+               fixed.size() -
+               (contact_system ? contact_system->surface_points().size() : 0)))
         .add("gravity", std::vector<double>(gravity.begin(), gravity.end()))
         .add("obstacles", static_cast<unsigned int>(planes.size()))
+        .add("surface obstacles", static_cast<unsigned int>(surfaces.size()))
+        .add("surface obstacle triangles", n_surface_triangles)
         .add("contact", ContactParameters::mode_name(contact.mode));
       auto scene = std::make_unique<Scene>(system,
                                            bodies_system,
@@ -611,6 +653,13 @@ namespace estep
           std::vector<double> corners;
           draw_half_space(plane, q0, corners);
           scene->add_obstacle_surface(corners, {0, 1, 2, 0, 2, 3});
+        }
+      for (const StaticSurface &surface : surfaces)
+        {
+          std::vector<unsigned int> triangles;
+          for (const auto &t : surface.triangles)
+            triangles.insert(triangles.end(), t.begin(), t.end());
+          scene->add_obstacle_surface(surface.points, triangles);
         }
       problem.system = std::move(scene);
       return problem;

@@ -12,6 +12,10 @@
 #   speed is the free fall's (1 %), no vertex is ever behind the floor, the contact lasts
 #   0.005 to 0.03 and the rebound keeps 70 to 100 % of the speed; the terraced energy is
 #   conserved to 1e-12 relative;
+# - the same drop onto a surface obstacle instead of the half-space (floor.stl, a square
+#   z = 0 of two triangles written here; to t = 0.4): no intersecting face pair at any step
+#   end, the terraced energy conserved to 1e-12 relative, the impact speed as with the
+#   half-space (1 %) and a rebound of 70 to 100 % of it;
 # - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
 #   on the same mesh (and the clamped vertices never move: the supports remove them);
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
@@ -39,6 +43,27 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
   fail "scene_newtons_cradle: $(tail -3 cradle.log)"
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=drop" -s "Time integration/End time=0.4" \
   > drop.log 2>&1 || fail "scene_ball_drop: $(tail -3 drop.log)"
+cat > floor.stl <<'STL'
+solid floor
+  facet normal 0 0 1
+    outer loop
+      vertex -1 -1 0
+      vertex 1 -1 0
+      vertex 1 1 0
+    endloop
+  endfacet
+  facet normal 0 0 1
+    outer loop
+      vertex -1 -1 0
+      vertex 1 1 0
+      vertex -1 1 0
+    endloop
+  endfacet
+endsolid floor
+STL
+"$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=surface" -s "Time integration/End time=0.4" \
+  -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" > surface.log 2>&1 ||
+  fail "scene_ball_drop on a surface: $(tail -3 surface.log)"
 "$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever" > cantilever.log 2>&1 ||
   fail "scene_cantilever: $(tail -3 cantilever.log)"
 "$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever_newmark" \
@@ -133,6 +158,22 @@ expect(0.7 <= rebound / -impact <= 1., f"drop: rebound {rebound} after {impact}"
 print(f"drop: {s['counters']['steps']} steps, free fall within {worst:.2e}, impact {-impact:.4f} "
       f"(free fall {analytic:.4f}), contact {c['contact duration']:.4f}, rebound {rebound:.3f}")
 
+s = json.load(open("surface/summary.json"))
+rows = history("surface")
+c = s["contact"]
+expect(s["status"] == "completed", f"surface: status {s['status']}")
+expect(s["problem"]["surface obstacles"] == 1 and s["problem"]["fixed vertices"] == 0,
+       f"surface: {s['problem']}")
+expect(s["energies"]["terraced energy drift"] < 1e-12, f"surface: drift {s['energies']['terraced energy drift']}")
+expect(c["largest number of intersecting face pairs"] == 0,
+       f"surface: {c['largest number of intersecting face pairs']} intersecting face pairs")
+surface_impact = min(float(r["V1_z"]) for r in rows)
+expect(abs(surface_impact / impact - 1) < 0.01, f"surface: impact {surface_impact}, half-space {impact}")
+surface_rebound = max(float(r["V1_z"]) for r in rows if float(r["time"]) > c["last contact instant"])
+expect(0.7 <= surface_rebound / -surface_impact <= 1., f"surface: rebound {surface_rebound} after {surface_impact}")
+print(f"surface: {s['counters']['steps']} steps, impact {-surface_impact:.4f}, contact {c['contact duration']:.4f}, "
+      f"rebound {surface_rebound:.3f}, drift {s['energies']['terraced energy drift']:.1e}")
+
 periods = {}
 for run in ("cantilever", "cantilever_newmark"):
     crossings = upward_crossings(history(run), "body1_z")
@@ -173,6 +214,8 @@ expect_error() {
 cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time integration/End time=0.01")
 expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
 expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
+expect_error "Scene/Obstacles/Surface files: STL file <missing.stl>: cannot be opened" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Surface files=missing.stl"
+expect_error "Scene: Body 1 intersects obstacle floor.stl at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
 expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> is not six numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
 expect_error "Contact/Penalty parameter: only Mode = penalty uses it \(Mode = impenetrability\)" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Penalty parameter=1e-5"
 expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Mode=none"

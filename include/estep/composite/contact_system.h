@@ -2,6 +2,7 @@
 #define estep_composite_contact_system_h
 
 #include <estep/composite/contact_parameters.h>
+#include <estep/composite/static_surface.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/fem/elastic_bodies.h>
 #include <estep/systems/mechanical_system.h>
@@ -42,6 +43,19 @@ namespace estep
    * Pairs of triangles of the same body count only with self-contact on, and
    * never when they share a vertex.
    *
+   * Static surfaces (rigid obstacles, StaticSurface): their points follow the
+   * bodies' points (surface s from surface_point_offset(s)), with inverse
+   * mass 1 so that the system stays well formed; they contribute no energy
+   * of their own, and their triangles join the contact triangles after the
+   * bodies' ones. All surfaces form one exclusion group: a surface never
+   * contacts itself or another surface, only the bodies. The system does not
+   * hold them in place: a user fixes surface_points() (SupportedSystem), so
+   * that they have velocity zero in every flight and the penalty term and
+   * the collision detection treat body-surface contact as any other.
+   * Everything that describes the bodies (n_bodies(), body_motion(),
+   * system_motion(), the rigid-motion observables, extract()) ignores the
+   * surface points.
+   *
    * The boundary triangles come from contact::boundary_triangles() on each
    * body's triangulation, mapped from triangulation vertex numbers to the
    * body's point numbers (through its DoFHandler, checked against the
@@ -57,6 +71,17 @@ namespace estep
      * Throws std::invalid_argument for an empty list or a bad parameter.
      */
     ContactSystem(std::vector<std::shared_ptr<const ElasticBody>> bodies,
+                  const ContactParameters                        &parameters,
+                  const std::string &name = "contact system");
+
+    /**
+     * The system of @p bodies (at least one) and the static @p surfaces
+     * (checked with StaticSurface::check()) interacting as @p parameters say.
+     * Throws std::invalid_argument for an empty list of bodies or a bad
+     * parameter, std::runtime_error for a bad surface.
+     */
+    ContactSystem(std::vector<std::shared_ptr<const ElasticBody>> bodies,
+                  std::vector<StaticSurface>                      surfaces,
                   const ContactParameters                        &parameters,
                   const std::string &name = "contact system");
 
@@ -139,20 +164,48 @@ namespace estep
     unsigned int
     point_offset(const unsigned int b) const;
 
-    /** The global state made of one vector per body (sizes as the bodies'
-     * n_dofs()). */
+    /** Number of points of all bodies (the surfaces' points come after). */
+    unsigned int
+    n_body_points() const;
+
+    /** Number of static surfaces. */
+    unsigned int
+    n_surfaces() const;
+
+    /** Static surface @p s. */
+    const StaticSurface &
+    surface(const unsigned int s) const;
+
+    /** The global number of surface @p s's first point. */
+    unsigned int
+    surface_point_offset(const unsigned int s) const;
+
+    /** The global numbers of all surface points (increasing): the points a
+     * user holds fixed. */
+    std::vector<unsigned int>
+    surface_points() const;
+
+    /** The global configuration made of one vector per body (sizes as the
+     * bodies' n_dofs()) followed by the surfaces' points. */
     Vector
     concatenate(const std::vector<Vector> &per_body) const;
+
+    /** The global velocity made of one vector per body (sizes as the bodies'
+     * n_dofs()), zero on the surfaces' points. */
+    Vector
+    concatenate_velocities(const std::vector<Vector> &per_body) const;
 
     /** Body @p b's part of the global vector @p x. */
     Vector
     extract(const Vector &x, const unsigned int b) const;
 
-    /** The boundary triangles of all bodies, in global point numbers. */
+    /** The boundary triangles of all bodies, then the triangles of the
+     * surfaces, in global point numbers. */
     const std::vector<contact::TriangleIndices> &
     boundary_triangles() const;
 
-    /** The body of each boundary triangle. */
+    /** The body of each boundary triangle; n_bodies() + s for the triangles
+     * of surface s. */
     const std::vector<unsigned int> &
     triangle_bodies() const;
 
@@ -177,7 +230,8 @@ namespace estep
     std::vector<std::pair<unsigned int, unsigned int>>
     intersecting_pairs(const Vector &q) const;
 
-    /** The pairs of bodies (b1 <= b2) whose boundaries intersect at q. */
+    /** The pairs of bodies (b1 <= b2) whose boundaries intersect at q; b2
+     * = n_bodies() + s for body b1 intersecting surface s. */
     std::vector<std::pair<unsigned int, unsigned int>>
     intersecting_bodies(const Vector &q) const;
 
@@ -185,21 +239,25 @@ namespace estep
     RigidBodyMotion
     body_motion(const Vector &q, const Vector &v, const unsigned int b) const;
 
-    /** Rigid motion of the whole system at (q, v). */
+    /** Rigid motion of all bodies together at (q, v) (surfaces
+     * excluded). */
     RigidBodyMotion
     system_motion(const Vector &q, const Vector &v) const;
 
   private:
     std::string                                     system_name;
     std::vector<std::shared_ptr<const ElasticBody>> bodies;
+    std::vector<StaticSurface>                      surfaces;
     ContactParameters                               contact_parameters;
-    std::vector<unsigned int>                       offsets;
-    Vector                                          inv_mass;
-    std::vector<contact::TriangleIndices>           triangles;
-    std::vector<unsigned int>                       triangle_body;
-    std::vector<unsigned int>                       exclusion_groups;
-    std::unique_ptr<contact::PenaltyContact>        penalty;
-    mutable std::vector<Vector>                     scratch_q, scratch_g;
+    /** The first point of each body, then of each surface, then the total
+     * number of points. */
+    std::vector<unsigned int>                offsets;
+    Vector                                   inv_mass;
+    std::vector<contact::TriangleIndices>    triangles;
+    std::vector<unsigned int>                triangle_body;
+    std::vector<unsigned int>                exclusion_groups;
+    std::unique_ptr<contact::PenaltyContact> penalty;
+    mutable std::vector<Vector>              scratch_q, scratch_g;
   };
 } // namespace estep
 

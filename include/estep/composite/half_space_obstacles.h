@@ -202,8 +202,9 @@ namespace estep
     unsigned int              dim;
   };
 
-  /** The points of the boundary triangles of @p system (every body's
-   * boundary vertices, in global point numbers), sorted. */
+  /** The points of the bodies' boundary triangles of @p system (every
+   * body's boundary vertices, in global point numbers; not the static
+   * surfaces' points), sorted. */
   std::vector<unsigned int>
   boundary_points(const ContactSystem &system);
 } // namespace estep

@@ -1,0 +1,212 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/reference_cell.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/composite/static_surface.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace estep
+{
+  unsigned int
+  StaticSurface::n_points() const
+  {
+    return points.size() / 3;
+  }
+
+
+
+  void
+  StaticSurface::check() const
+  {
+    const std::string what = "surface <" + name + ">: ";
+    if (points.size() % 3 != 0)
+      throw std::runtime_error(what + "the number of coordinates is not a "
+                                      "multiple of three.");
+    if (triangles.empty())
+      throw std::runtime_error(what + "no triangle.");
+    for (const double x : points)
+      if (!std::isfinite(x))
+        throw std::runtime_error(what + "a coordinate is not finite.");
+    for (const auto &t : triangles)
+      {
+        for (const unsigned int i : t)
+          if (i >= n_points())
+            throw std::runtime_error(what +
+                                     "a triangle refers to a missing point.");
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+          throw std::runtime_error(what + "a triangle repeats a point.");
+      }
+  }
+
+
+
+  StaticSurface
+  read_stl_surface(const std::string &filename)
+  {
+    const std::string what = "STL file <" + filename + ">: ";
+    std::ifstream     in(filename);
+    if (!in)
+      throw std::runtime_error(what + "cannot be opened.");
+
+    StaticSurface surface;
+    surface.name = filename;
+    std::map<std::array<double, 3>, unsigned int> point_of;
+    std::vector<unsigned int>                     loop;
+    std::string                                   word;
+    bool                                          started = false;
+    bool                                          in_loop = false;
+    while (in >> word)
+      {
+        if (!started)
+          {
+            if (word != "solid")
+              throw std::runtime_error(what +
+                                       "not an ASCII STL file (it does not "
+                                       "start with 'solid').");
+            started = true;
+            std::string rest;
+            std::getline(in, rest); // the solid's name
+            continue;
+          }
+        if (word == "vertex")
+          {
+            std::array<double, 3> x;
+            for (double &c : x)
+              if (!(in >> c))
+                throw std::runtime_error(what +
+                                         "a vertex without three numbers.");
+            if (!in_loop)
+              throw std::runtime_error(what + "a vertex outside a loop.");
+            const auto [it, inserted] =
+              point_of.emplace(x, static_cast<unsigned int>(point_of.size()));
+            if (inserted)
+              surface.points.insert(surface.points.end(), x.begin(), x.end());
+            loop.push_back(it->second);
+          }
+        else if (word == "outer")
+          {
+            in >> word; // "loop"
+            in_loop = true;
+            loop.clear();
+          }
+        else if (word == "endloop")
+          {
+            if (loop.size() != 3)
+              throw std::runtime_error(
+                what + "a facet with " + std::to_string(loop.size()) +
+                " vertices (only triangles are supported).");
+            surface.triangles.push_back({{loop[0], loop[1], loop[2]}});
+            in_loop = false;
+          }
+        else if (word == "facet")
+          {
+            // "normal nx ny nz": not used.
+            std::string rest;
+            std::getline(in, rest);
+          }
+        else if (word == "endfacet")
+          continue;
+        else if (word == "endsolid" || word == "solid")
+          {
+            std::string rest;
+            std::getline(in, rest);
+          }
+        else
+          throw std::runtime_error(what + "unexpected word <" + word + ">.");
+      }
+    if (!started)
+      throw std::runtime_error(what + "empty.");
+    if (in_loop)
+      throw std::runtime_error(what + "ends inside a loop.");
+    surface.check();
+    return surface;
+  }
+
+
+
+  StaticSurface
+  read_msh_surface(const std::string &filename)
+  {
+    const std::string what = "gmsh file <" + filename + ">: ";
+    std::ifstream     in(filename);
+    if (!in)
+      throw std::runtime_error(what + "cannot be opened.");
+    dealii::Triangulation<2, 3> tria;
+    try
+      {
+        dealii::GridIn<2, 3> grid_in(tria);
+        grid_in.read_msh(in);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        std::ostringstream text;
+        e.print_info(text);
+        std::string message = text.str();
+        message.erase(std::remove(message.begin(), message.end(), '\n'),
+                      message.end());
+        throw std::runtime_error(
+          what + "not a gmsh surface mesh of triangles (" + message + ").");
+      }
+    catch (const std::exception &e)
+      {
+        throw std::runtime_error(
+          what + "not a gmsh surface mesh of triangles (" + e.what() + ").");
+      }
+    if (tria.n_active_cells() == 0)
+      throw std::runtime_error(what + "no triangle.");
+
+    StaticSurface surface;
+    surface.name = filename;
+    std::vector<unsigned int> point_of_vertex(tria.n_vertices(), 0);
+    const auto               &vertices = tria.get_vertices();
+    const auto               &used     = tria.get_used_vertices();
+    for (unsigned int i = 0; i < tria.n_vertices(); ++i)
+      if (used[i])
+        {
+          point_of_vertex[i] = surface.n_points();
+          for (unsigned int c = 0; c < 3; ++c)
+            surface.points.push_back(vertices[i][c]);
+        }
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        if (cell->reference_cell() != dealii::ReferenceCells::Triangle)
+          throw std::runtime_error(
+            what + "has elements that are not triangles (only triangles are "
+                   "supported).");
+        surface.triangles.push_back({{point_of_vertex[cell->vertex_index(0)],
+                                      point_of_vertex[cell->vertex_index(1)],
+                                      point_of_vertex[cell->vertex_index(2)]}});
+      }
+    surface.check();
+    return surface;
+  }
+
+
+
+  StaticSurface
+  read_static_surface(const std::string &filename)
+  {
+    std::string extension;
+    if (const auto dot = filename.rfind('.'); dot != std::string::npos)
+      extension = filename.substr(dot + 1);
+    std::transform(extension.begin(),
+                   extension.end(),
+                   extension.begin(),
+                   [](const unsigned char c) { return std::tolower(c); });
+    if (extension == "stl")
+      return read_stl_surface(filename);
+    if (extension == "msh")
+      return read_msh_surface(filename);
+    throw std::runtime_error("surface file <" + filename +
+                             ">: unknown extension (expected .stl or .msh).");
+  }
+} // namespace estep
