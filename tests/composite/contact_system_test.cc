@@ -470,18 +470,38 @@ TEST(ContactParameters, DeclareParseAndErrors)
   ContactParameters::declare_parameters(prm);
   prm.parse_input_from_string("subsection Contact\n"
                               "  set Mode = impenetrability\n"
-                              "  set Penalty parameter = 1e-3\n"
+                              "  set Collision tolerance = 1e-5\n"
                               "  set Self contact = true\n"
                               "end\n");
   ContactParameters p;
   p.parse_parameters(prm);
   EXPECT_EQ(p.mode, ContactParameters::Mode::impenetrability);
-  EXPECT_EQ(p.penalty_parameter, 1e-3);
+  EXPECT_EQ(p.ccd_tolerance, 1e-5);
   EXPECT_TRUE(p.self_contact);
+  EXPECT_FALSE(p.is_default());
   EXPECT_EQ(ContactParameters::mode_name(p.mode), "impenetrability");
   EXPECT_ANY_THROW(ContactParameters::parse_mode("glue"));
   dealii::ParameterHandler bad;
   ContactParameters::declare_parameters(bad);
   EXPECT_ANY_THROW(bad.parse_input_from_string(
     "subsection Contact\n  set Mode = glue\nend\n"));
+  // A setting the mode does not use is an error, not ignored.
+  for (const char *text :
+       {"set Mode = impenetrability\nset Penalty parameter = 1e-3\n",
+        "set Mode = penalty\nset Collision tolerance = 1e-5\n",
+        "set Mode = none\nset Self contact = true\n"})
+    {
+      dealii::ParameterHandler unused;
+      ContactParameters::declare_parameters(unused);
+      unused.parse_input_from_string(std::string("subsection Contact\n") +
+                                     text + "end\n");
+      EXPECT_THROW(ContactParameters().parse_parameters(unused),
+                   std::runtime_error)
+        << text;
+    }
+  ContactParameters        defaults;
+  dealii::ParameterHandler plain;
+  ContactParameters::declare_parameters(plain);
+  defaults.parse_parameters(plain);
+  EXPECT_TRUE(defaults.is_default());
 }
