@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
 #include <estep/composite/gravity.h>
@@ -22,7 +23,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -351,12 +351,12 @@ namespace estep
         {
           make_mesh(mesh, tria);
         }
-      catch (const dealii::ExceptionBase &e)
+      catch (const std::exception &e)
         {
-          std::ostringstream text;
-          e.print_info(text);
-          throw std::runtime_error(
-            section + "/Mesh: " + dealii::Utilities::trim(text.str()));
+          std::string message = one_line_message(e);
+          if (message.rfind("Mesh: ", 0) == 0)
+            message.erase(0, 6);
+          throw std::runtime_error(section + "/Mesh: " + message);
         }
 
       prm.enter_subsection("Placement");
