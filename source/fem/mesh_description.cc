@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/exception_text.h>
+#include <estep/base/point_entry.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
@@ -18,22 +19,6 @@ namespace estep
 {
   namespace
   {
-    std::array<double, 3>
-    parse_point(const std::string &text, const std::string &entry)
-    {
-      const std::vector<std::string> parts =
-        dealii::Utilities::split_string_list(text, ',');
-      AssertThrow(parts.size() == 3,
-                  dealii::ExcMessage(
-                    "Mesh: the entry '" + entry +
-                    "' needs three comma-separated numbers, got '" + text +
-                    "'."));
-      std::array<double, 3> p;
-      for (unsigned int d = 0; d < 3; ++d)
-        p[d] = dealii::Utilities::string_to_double(parts[d]);
-      return p;
-    }
-
     std::string
     print_point(const std::array<double, 3> &p)
     {
@@ -136,15 +121,15 @@ namespace estep
   {
     type           = prm.get("Type");
     n_subdivisions = prm.get_integer("Subdivisions");
-    lower          = parse_point(prm.get("Lower corner"), "Lower corner");
-    upper          = parse_point(prm.get("Upper corner"), "Upper corner");
+    lower          = parse_point(prm.get("Lower corner"), "Mesh/Lower corner");
+    upper          = parse_point(prm.get("Upper corner"), "Mesh/Upper corner");
     radius         = prm.get_double("Radius");
     mesh_size      = prm.get_double("Mesh size");
     generator      = prm.get("Generator");
     arguments      = prm.get("Generator arguments");
     n_refinements  = prm.get_integer("Refinements");
     file_name      = prm.get("File name");
-    shift          = parse_point(prm.get("Shift"), "Shift");
+    shift          = parse_point(prm.get("Shift"), "Mesh/Shift");
   }
 
   void

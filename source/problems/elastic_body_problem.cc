@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
@@ -19,21 +20,6 @@ namespace estep
 {
   namespace
   {
-    std::array<double, 3>
-    parse_point(const std::string &text, const std::string &entry)
-    {
-      const std::vector<std::string> parts =
-        dealii::Utilities::split_string_list(text, ',');
-      if (parts.size() != 3)
-        throw std::runtime_error("Elastic body/" + entry + ": <" + text +
-                                 "> is not three comma-separated numbers.");
-      return {{dealii::Utilities::string_to_double(parts[0]),
-               dealii::Utilities::string_to_double(parts[1]),
-               dealii::Utilities::string_to_double(parts[2])}};
-    }
-
-
-
     void
     declare_elastic_body_parameters(dealii::ParameterHandler &prm)
     {
@@ -131,7 +117,8 @@ namespace estep
                                                            material.density,
                                                            "elastic body");
       body->track_point("tracked",
-                        parse_point(prm.get("Tracked point"), "Tracked point"));
+                        parse_point(prm.get("Tracked point"),
+                                    "Elastic body/Tracked point"));
 
       Problem problem;
       problem.q0 = body->reference_configuration();
@@ -141,9 +128,11 @@ namespace estep
         problem.v0 = body->rigid_velocity(
           problem.q0,
           parse_point(prm.get("Translational velocity"),
-                      "Translational velocity"),
-          parse_point(prm.get("Angular velocity"), "Angular velocity"),
-          parse_point(prm.get("Rotation centre"), "Rotation centre"));
+                      "Elastic body/Initial velocity/Translational velocity"),
+          parse_point(prm.get("Angular velocity"),
+                      "Elastic body/Initial velocity/Angular velocity"),
+          parse_point(prm.get("Rotation centre"),
+                      "Elastic body/Initial velocity/Rotation centre"));
       else
         problem.v0 = evaluate_vector_field(
           "Elastic body/Initial velocity/Function expression",

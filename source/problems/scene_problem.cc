@@ -5,6 +5,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/exception_text.h>
+#include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
 #include <estep/composite/gravity.h>
@@ -30,15 +31,6 @@ namespace estep
   namespace
   {
     using Point3 = std::array<double, 3>;
-
-    Point3
-    parse_point(const std::string &text)
-    {
-      const auto parts = dealii::Utilities::split_string_list(text, ',');
-      return {{dealii::Utilities::string_to_double(parts[0]),
-               dealii::Utilities::string_to_double(parts[1]),
-               dealii::Utilities::string_to_double(parts[2])}};
-    }
 
     /** "p_x, p_y, p_z, n_x, n_y, n_z; ..." as half-spaces (unit normals). */
     std::vector<HalfSpace>
@@ -361,9 +353,11 @@ namespace estep
 
       prm.enter_subsection("Placement");
       const double scale = prm.get_double("Scale");
-      const Point3 axis  = parse_point(prm.get("Rotation axis"));
+      const Point3 axis  = parse_point(prm.get("Rotation axis"),
+                                      section + "/Placement/Rotation axis");
       const double angle = prm.get_double("Rotation angle");
-      const Point3 shift = parse_point(prm.get("Shift"));
+      const Point3 shift =
+        parse_point(prm.get("Shift"), section + "/Placement/Shift");
       prm.leave_subsection();
       if (!(scale > 0.))
         throw std::runtime_error(section +
@@ -396,11 +390,8 @@ namespace estep
       if (const std::string tracked = prm.get("Tracked point");
           !tracked.empty())
         {
-          if (dealii::Utilities::split_string_list(tracked, ',').size() != 3)
-            throw std::runtime_error(section + "/Tracked point: <" + tracked +
-                                     "> is not three numbers x, y, z.");
           body->track_point("body" + std::to_string(b + 1),
-                            parse_point(tracked));
+                            parse_point(tracked, section + "/Tracked point"));
         }
 
       prm.enter_subsection("Initial displacement");
@@ -411,11 +402,14 @@ namespace estep
 
       prm.enter_subsection("Initial velocity");
       if (prm.get("Type") == "rigid motion")
-        result.v0 =
-          body->rigid_velocity(X,
-                               parse_point(prm.get("Translational velocity")),
-                               parse_point(prm.get("Angular velocity")),
-                               parse_point(prm.get("Rotation centre")));
+        result.v0 = body->rigid_velocity(
+          X,
+          parse_point(prm.get("Translational velocity"),
+                      section + "/Initial velocity/Translational velocity"),
+          parse_point(prm.get("Angular velocity"),
+                      section + "/Initial velocity/Angular velocity"),
+          parse_point(prm.get("Rotation centre"),
+                      section + "/Initial velocity/Rotation centre"));
       else
         result.v0 =
           evaluate_function_entries(prm, section + "/Initial velocity", X);
@@ -469,8 +463,8 @@ namespace estep
     create_scene_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Scene");
-      const unsigned int     n_bodies = prm.get_integer("Number of bodies");
-      const Point3           gravity  = parse_point(prm.get("Gravity"));
+      const unsigned int n_bodies = prm.get_integer("Number of bodies");
+      const Point3 gravity = parse_point(prm.get("Gravity"), "Scene/Gravity");
       std::vector<SceneBody> bodies;
       for (unsigned int b = 0; b < n_bodies; ++b)
         {
