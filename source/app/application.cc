@@ -11,6 +11,7 @@
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
+#include <estep/io/checkpoint.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
 #include <estep/materials/material_registry.h>
@@ -24,6 +25,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -46,6 +48,10 @@ namespace estep
       "                                 is a .json file, PRM otherwise\n"
       "  -s, --set \"Section/Entry=value\" override an entry of INPUT.prm (repeatable);\n"
       "                                 nested subsections are separated by '/'\n"
+      "  --resume                       continue the run from the checkpoint in its\n"
+      "                                 output directory (Output/Checkpoint interval),\n"
+      "                                 appending to its outputs; without a checkpoint\n"
+      "                                 there, start from the beginning\n"
       "\n"
       "'estep ccd' runs the conservative continuous collision detection on query files\n"
       "(CSV, the format of the Wang et al. sample queries) and prints the counts of\n"
@@ -77,8 +83,9 @@ namespace estep
     /** What the command line asks for. */
     struct CommandLine
     {
-      bool        help = false, version = false, print_parameters = false;
-      std::string input_file;
+      bool help = false, version = false, print_parameters = false,
+           resume = false;
+      std::string              input_file;
       std::vector<std::string> overrides;
     };
 
@@ -104,6 +111,8 @@ namespace estep
             command.version = true;
           else if (arg == "--print-parameters")
             command.print_parameters = true;
+          else if (arg == "--resume")
+            command.resume = true;
           else if (arg == "-s" || arg == "--set")
             {
               if (i + 1 >= argc)
@@ -318,13 +327,17 @@ namespace estep
      * Remove what an earlier run left in @p directory that this run might not
      * overwrite, so that nothing there describes another run: field
      * snapshots, the obstacles and their series files, the step histogram,
-     * the log. Only estep's own file names are touched.
+     * the log, the checkpoint. Only estep's own file names are touched.
      */
     void
     remove_earlier_outputs(const std::filesystem::path &directory)
     {
-      for (const char *name :
-           {"solution.pvd", "solution.xdmf", "step_histogram.csv", "log.txt"})
+      for (const std::string &name : {std::string("solution.pvd"),
+                                      std::string("solution.xdmf"),
+                                      std::string("step_histogram.csv"),
+                                      std::string("log.txt"),
+                                      checkpoint_file_name,
+                                      checkpoint_file_name + ".part"})
         std::filesystem::remove(directory / name);
       const std::filesystem::path fields = directory / "fields";
       if (std::filesystem::is_directory(fields))
@@ -340,18 +353,21 @@ namespace estep
      * Everything that input can make fail has been done: only now is the
      * output directory touched, first with a summary saying "running" (so
      * that no reader takes an earlier run's summary for this one), then the
-     * parameters as read.
+     * parameters as read. A resumed run keeps the earlier outputs it
+     * continues.
      */
     void
     prepare_output_directory(const std::filesystem::path    &directory,
                              const dealii::ParameterHandler &prm,
-                             const RunRecord                &run)
+                             const RunRecord                &run,
+                             const bool                      resumed)
     {
       std::filesystem::create_directories(directory);
       write_file_atomically((directory / "summary.json").string(),
                             status_summary(run, "running", "").to_string() +
                               "\n");
-      remove_earlier_outputs(directory);
+      if (!resumed)
+        remove_earlier_outputs(directory);
       for (const auto &[name, style] :
            {std::pair{"parameters.prm", dealii::ParameterHandler::ShortPRM},
             std::pair{"parameters.json", dealii::ParameterHandler::ShortJSON}})
@@ -362,19 +378,46 @@ namespace estep
         }
     }
 
-    /** Run the time loop; SIGINT and SIGTERM end it after the current step,
-     * with its summary (status interrupted). */
+    /** The PRM text of the parameters (what checkpoints compare). */
+    std::string
+    parameters_text(const dealii::ParameterHandler &prm)
+    {
+      std::ostringstream text;
+      prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+      return text.str();
+    }
+
+    /**
+     * Run the time loop from the start, or from @p resumed_state; SIGINT and
+     * SIGTERM end it after the current step, with a checkpoint and its
+     * summary (status interrupted).
+     */
     TimeLoopResult
     run_time_loop_with_signals(
       TimeIntegrator                                    &integrator,
       const RunParameters                               &parameters,
-      const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
+      const std::string                                 &parameters_as_read,
+      const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
+      const std::optional<TimeLoopState>                &resumed_state)
     {
       TimeLoopSettings settings;
-      settings.start_time      = parameters.start_time;
-      settings.end_time        = parameters.end_time;
-      settings.output_interval = parameters.history_interval;
-      settings.blowup_factor   = parameters.blowup_factor;
+      settings.start_time              = parameters.start_time;
+      settings.end_time                = parameters.end_time;
+      settings.output_interval         = parameters.history_interval;
+      settings.blowup_factor           = parameters.blowup_factor;
+      settings.checkpoint_interval     = parameters.checkpoint_interval;
+      settings.checkpoint_wall_seconds = parameters.checkpoint_wall_seconds;
+      if (parameters.checkpoint_interval > 0. ||
+          parameters.checkpoint_wall_seconds > 0.)
+        settings.write_checkpoint = [&](const TimeLoopState &state) {
+          write_checkpoint((std::filesystem::path(parameters.output_directory) /
+                            checkpoint_file_name)
+                             .string(),
+                           parameters_as_read,
+                           state,
+                           integrator,
+                           postprocessors);
+        };
       std::vector<RunObserver *> observers;
       for (const auto &postprocessor : postprocessors)
         observers.push_back(postprocessor.get());
@@ -384,7 +427,9 @@ namespace estep
       std::signal(SIGINT, interrupt);
       std::signal(SIGTERM, interrupt);
       const TimeLoopResult result =
-        run_time_loop(integrator, settings, observers);
+        resumed_state ?
+          resume_time_loop(integrator, settings, observers, *resumed_state) :
+          run_time_loop(integrator, settings, observers);
       std::signal(SIGINT, SIG_DFL);
       std::signal(SIGTERM, SIG_DFL);
       return result;
@@ -455,11 +500,34 @@ namespace estep
 
       const std::filesystem::path directory(parameters.output_directory);
       const std::string summary_file = (directory / "summary.json").string();
-      prepare_output_directory(directory, prm, record);
+      const std::string parameters_as_read = parameters_text(prm);
+      std::optional<Checkpoint>    checkpoint;
+      std::optional<TimeLoopState> resumed_state;
+      if (command.resume)
+        {
+          const std::string file = (directory / checkpoint_file_name).string();
+          if (std::filesystem::exists(file))
+            {
+              checkpoint.emplace(file);
+              checkpoint->check_parameters(parameters_as_read);
+              resumed_state = checkpoint->restore(*integrator);
+              std::cout << "estep: resuming from <" << file
+                        << "> at t = " << integrator->time() << " after "
+                        << integrator->n_steps() << " steps\n";
+            }
+          else
+            std::cout << "estep: --resume: no checkpoint in "
+                      << directory.string()
+                      << "/: the run starts from the beginning\n";
+        }
+      prepare_output_directory(directory, prm, record, checkpoint.has_value());
       try
         {
-          for (const auto &postprocessor : postprocessors)
-            postprocessor->start();
+          if (checkpoint)
+            checkpoint->resume(postprocessors);
+          else
+            for (const auto &postprocessor : postprocessors)
+              postprocessor->start();
         }
       catch (const std::runtime_error &error)
         {
@@ -478,8 +546,11 @@ namespace estep
           return exit_failed;
         }
 
-      TimeLoopResult result =
-        run_time_loop_with_signals(*integrator, parameters, postprocessors);
+      TimeLoopResult result = run_time_loop_with_signals(*integrator,
+                                                         parameters,
+                                                         parameters_as_read,
+                                                         postprocessors,
+                                                         resumed_state);
       finish_postprocessors(postprocessors, result);
       try
         {

@@ -61,6 +61,23 @@ namespace estep
         "Write a row of history.csv every this much simulated time, from "
         "the start time on, and at the end time; 0 writes the start and "
         "the end only.");
+      prm.declare_entry(
+        "Checkpoint interval",
+        "0",
+        Double(0., max),
+        "Write the whole state of the run to checkpoint.bin in the output "
+        "directory after the first step past every multiple of this much "
+        "simulated time (0: not by simulated time). `estep file.prm "
+        "--resume` continues from the last checkpoint, bit for bit as if "
+        "the run had not stopped. A checkpoint is also written at the end of "
+        "the run and when SIGINT or SIGTERM stops it, whenever either "
+        "interval is set.");
+      prm.declare_entry(
+        "Checkpoint wall interval",
+        "15",
+        Double(0., max),
+        "Also write a checkpoint after every this many minutes of wall time "
+        "(0: not by wall time).");
     }
     prm.leave_subsection();
 
@@ -85,7 +102,9 @@ namespace estep
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
-    history_interval = prm.get_double("History interval");
+    history_interval        = prm.get_double("History interval");
+    checkpoint_interval     = prm.get_double("Checkpoint interval");
+    checkpoint_wall_seconds = 60. * prm.get_double("Checkpoint wall interval");
     prm.leave_subsection();
 
     if (!(end_time > start_time))
@@ -119,5 +138,6 @@ namespace estep
           " outputs over the run; choose a larger interval.");
     };
     check_interval("History interval", history_interval, 1e8);
+    check_interval("Checkpoint interval", checkpoint_interval, 1e6);
   }
 } // namespace estep

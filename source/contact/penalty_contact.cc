@@ -127,6 +127,13 @@ namespace estep
       else
         bvh.refit(q, n);
       bvh.find_pairs(pairs);
+      // The order of the sum below must not depend on the tree's history
+      // (built here or refitted since): a resumed run, which builds it
+      // afresh, then sums exactly as the uninterrupted one.
+      for (auto &[i, j] : pairs)
+        if (i > j)
+          std::swap(i, j);
+      std::sort(pairs.begin(), pairs.end());
 
       const auto &tris  = bvh.get_triangles();
       double      total = 0.;

@@ -294,14 +294,15 @@ namespace estep
     ARKStepGetNumNonlinSolvIters(im.arkode_memory, &newton);
     ARKStepGetNumErrTestFails(im.arkode_memory, &error_failures);
     ARKStepGetNumNonlinSolvConvFails(im.arkode_memory, &convergence_failures);
-    return {{"steps", steps},
-            {"residual evaluations", static_cast<std::uint64_t>(nfi)},
-            {"newton iterations", static_cast<std::uint64_t>(newton)},
-            {"linear iterations", im.linear_solver.n_linear_iterations()},
-            {"jacobian setups", im.linear_solver.n_setups()},
-            {"error test failures", static_cast<std::uint64_t>(error_failures)},
-            {"newton convergence failures",
-             static_cast<std::uint64_t>(convergence_failures)}};
+    return with_resumed_counts(
+      {{"steps", steps},
+       {"residual evaluations", static_cast<std::uint64_t>(nfi)},
+       {"newton iterations", static_cast<std::uint64_t>(newton)},
+       {"linear iterations", im.linear_solver.n_linear_iterations()},
+       {"jacobian setups", im.linear_solver.n_setups()},
+       {"error test failures", static_cast<std::uint64_t>(error_failures)},
+       {"newton convergence failures",
+        static_cast<std::uint64_t>(convergence_failures)}});
   }
 
 

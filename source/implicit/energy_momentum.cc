@@ -339,11 +339,12 @@ namespace estep
   EnergyMomentum::counters() const
   {
     const Implementation &im = *implementation;
-    return {{"steps", steps},
-            {"residual evaluations", im.residual_evaluations},
-            {"newton iterations", im.newton_iterations},
-            {"linear iterations", im.linear_solver.n_linear_iterations()},
-            {"jacobian setups", im.linear_solver.n_setups()}};
+    return with_resumed_counts(
+      {{"steps", steps},
+       {"residual evaluations", im.residual_evaluations},
+       {"newton iterations", im.newton_iterations},
+       {"linear iterations", im.linear_solver.n_linear_iterations()},
+       {"jacobian setups", im.linear_solver.n_setups()}});
   }
 
 

@@ -269,14 +269,15 @@ namespace estep
     IDAGetNumNonlinSolvIters(im.ida_memory, &newton);
     IDAGetNumErrTestFails(im.ida_memory, &error_failures);
     IDAGetNumNonlinSolvConvFails(im.ida_memory, &convergence_failures);
-    return {{"steps", steps},
-            {"residual evaluations", im.residual_evaluations},
-            {"newton iterations", static_cast<std::uint64_t>(newton)},
-            {"linear iterations", im.linear_solver.n_linear_iterations()},
-            {"jacobian setups", im.linear_solver.n_setups()},
-            {"error test failures", static_cast<std::uint64_t>(error_failures)},
-            {"newton convergence failures",
-             static_cast<std::uint64_t>(convergence_failures)}};
+    return with_resumed_counts(
+      {{"steps", steps},
+       {"residual evaluations", im.residual_evaluations},
+       {"newton iterations", static_cast<std::uint64_t>(newton)},
+       {"linear iterations", im.linear_solver.n_linear_iterations()},
+       {"jacobian setups", im.linear_solver.n_setups()},
+       {"error test failures", static_cast<std::uint64_t>(error_failures)},
+       {"newton convergence failures",
+        static_cast<std::uint64_t>(convergence_failures)}});
   }
 
 

@@ -29,6 +29,69 @@ namespace estep
 
 
   void
+  ImplicitIntegrator::save_state(StateWriter &out) const
+  {
+    TimeIntegrator::save_state(out);
+    out.put_vector(q_old);
+    out.put_vector(v_old);
+    const std::vector<Counter> counts = counters();
+    out.put(static_cast<std::uint64_t>(counts.size()));
+    for (const auto &[name, count] : counts)
+      {
+        out.put(name);
+        out.put(count);
+      }
+  }
+
+
+
+  void
+  ImplicitIntegrator::load_state(StateReader &in)
+  {
+    TimeIntegrator::load_state(in);
+    const double        time = t, time_before = t_previous;
+    const Vector        position = q, velocity = v;
+    const std::uint64_t n_steps  = steps;
+    const double        smallest = smallest_step, largest = largest_step;
+    initialize(time, position, velocity);
+    t_previous    = time_before;
+    steps         = n_steps;
+    smallest_step = smallest;
+    largest_step  = largest;
+    in.get_vector(q_old);
+    in.get_vector(v_old);
+
+    resumed_counts.clear();
+    const std::vector<Counter> after_restart = counters();
+    const auto                 n             = in.get<std::uint64_t>();
+    for (std::uint64_t i = 0; i < n; ++i)
+      {
+        const std::string name  = in.get_string();
+        const auto        count = in.get<std::uint64_t>();
+        std::uint64_t     now   = 0;
+        for (const auto &[other, value] : after_restart)
+          if (other == name)
+            now = value;
+        if (name != "steps")
+          resumed_counts.emplace_back(name, count - now);
+      }
+  }
+
+
+
+  std::vector<Counter>
+  ImplicitIntegrator::with_resumed_counts(std::vector<Counter> counts) const
+  {
+    for (auto &[name, count] : counts)
+      for (const auto &[resumed, offset] : resumed_counts)
+        if (resumed == name)
+          count += offset;
+    return counts;
+  }
+
+
+
+  void
   ImplicitIntegrator::begin_step()
   {
     q_old = q;

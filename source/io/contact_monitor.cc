@@ -99,6 +99,40 @@ namespace estep
 
 
   void
+  ContactMonitor::save_state(StateWriter &out) const
+  {
+    out.put(largest_obstacle_count);
+    out.put(largest_pair_count);
+    out.put(steps_with_pairs);
+    out.put(constraint_events_seen);
+    out.put(in_contact);
+    out.put(n_contact_instants);
+    out.put(first_contact);
+    out.put(last_contact);
+    out.put(step_before_first_contact);
+    out.put(step_after_last_contact);
+  }
+
+
+
+  void
+  ContactMonitor::resume(StateReader &in)
+  {
+    largest_obstacle_count    = in.get<unsigned int>();
+    largest_pair_count        = in.get<unsigned int>();
+    steps_with_pairs          = in.get<std::uint64_t>();
+    constraint_events_seen    = in.get<std::uint64_t>();
+    in_contact                = in.get<bool>();
+    n_contact_instants        = in.get<std::uint64_t>();
+    first_contact             = in.get<double>();
+    last_contact              = in.get<double>();
+    step_before_first_contact = in.get<double>();
+    step_after_last_contact   = in.get<double>();
+  }
+
+
+
+  void
   ContactMonitor::after_step(const TimeIntegrator &integrator)
   {
     Vector q, v;

@@ -120,6 +120,43 @@ namespace estep
 
 
 
+  void
+  FieldOutput::save_state(StateWriter &out) const
+  {
+    const Implementation &self = *implementation;
+    out.put(self.next_time);
+    out.put(static_cast<std::uint64_t>(self.pvd_records.size()));
+    for (const auto &[time, file] : self.pvd_records)
+      {
+        out.put(time);
+        out.put(file);
+      }
+  }
+
+
+
+  void
+  FieldOutput::resume(StateReader &in)
+  {
+    Implementation &self = *implementation;
+    if (self.format == Format::hdf5)
+      throw std::runtime_error(
+        "Postprocessors/Field output/Format: an HDF5 series cannot be "
+        "resumed from a checkpoint; use vtu, or run from the start.");
+    start();
+    self.next_time = in.get<double>();
+    self.pvd_records.resize(in.get<std::uint64_t>());
+    for (auto &[time, file] : self.pvd_records)
+      {
+        time = in.get<double>();
+        file = in.get_string();
+      }
+    if (!self.pvd_records.empty())
+      self.write_pvd();
+  }
+
+
+
   FieldOutput::~FieldOutput() = default;
 
 

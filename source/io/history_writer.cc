@@ -41,6 +41,38 @@ namespace estep
     if (!out)
       throw std::runtime_error("Cannot write the history file <" + filename +
                                ">.");
+    bytes_written = out.tellp();
+  }
+
+
+
+  void
+  HistoryWriter::save_state(StateWriter &state) const
+  {
+    state.put(bytes_written);
+    state.put(smallest_step_since_row);
+    state.put(largest_step_since_row);
+  }
+
+
+
+  void
+  HistoryWriter::resume(StateReader &state)
+  {
+    bytes_written           = state.get<std::uint64_t>();
+    smallest_step_since_row = state.get<double>();
+    largest_step_since_row  = state.get<double>();
+    std::error_code error;
+    if (std::filesystem::file_size(filename, error) < bytes_written || error)
+      throw std::runtime_error("Cannot resume the history file <" + filename +
+                               ">: it is missing or shorter than at the "
+                               "checkpoint.");
+    std::filesystem::resize_file(filename, bytes_written);
+    out.open(filename, std::ios::app | std::ios::ate);
+    out << std::setprecision(16);
+    if (!out)
+      throw std::runtime_error("Cannot open the history file <" + filename +
+                               "> for appending.");
   }
 
 
@@ -77,6 +109,7 @@ namespace estep
       out << ',' << x;
     out << '\n';
     out.flush();
+    bytes_written = out.tellp();
     if (!out)
       throw OutputFailed("Writing a row of the history file <" + filename +
                          "> failed (is the disk full?).");

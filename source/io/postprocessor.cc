@@ -15,6 +15,20 @@ namespace estep
 
 
   void
+  Postprocessor::save_state(StateWriter &) const
+  {}
+
+
+
+  void
+  Postprocessor::resume(StateReader &)
+  {
+    start();
+  }
+
+
+
+  void
   Postprocessor::finish(const TimeLoopResult &)
   {}
 

@@ -24,6 +24,7 @@ namespace estep
                       nullptr)
     , wall_start(std::chrono::steady_clock::now())
     , last_line(wall_start)
+    , first_time(start_time)
   {}
 
 
@@ -35,6 +36,23 @@ namespace estep
     if (!out)
       throw std::runtime_error("Cannot open the log file <" + filename +
                                "> for writing.");
+  }
+
+
+
+  void
+  ProgressLog::resume(StateReader &)
+  {
+    out.open(filename, std::ios::app);
+    if (!out)
+      throw std::runtime_error("Cannot open the log file <" + filename +
+                               "> for appending.");
+    first_time = integrator.time();
+    first_step = integrator.n_steps();
+    wall_start = last_line = std::chrono::steady_clock::now();
+    if (line)
+      line->watch_from(first_time, first_step);
+    write(integrator, ", resumed from the checkpoint");
   }
 
 
@@ -77,9 +95,12 @@ namespace estep
                   integrator.time(),
                   100. * done,
                   static_cast<unsigned long long>(integrator.n_steps()),
-                  integrator.n_steps() / (wall > 0. ? wall : 1.),
+                  (integrator.n_steps() - first_step) / (wall > 0. ? wall : 1.),
                   wall,
-                  done > 0. ? wall * (1. - done) / done : 0.);
+                  integrator.time() > first_time ?
+                    wall * (end_time - integrator.time()) /
+                      (integrator.time() - first_time) :
+                    0.);
     if (to_standard_output)
       std::cout << line << suffix << std::endl;
     out << line << suffix << std::endl;

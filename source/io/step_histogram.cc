@@ -33,6 +33,24 @@ namespace estep
   }
 
   void
+  StepHistogram::save_state(StateWriter &out) const
+  {
+    for (const std::uint64_t count : bins)
+      out.put(count);
+  }
+
+
+
+  void
+  StepHistogram::resume(StateReader &in)
+  {
+    for (std::uint64_t &count : bins)
+      count = in.get<std::uint64_t>();
+  }
+
+
+
+  void
   StepHistogram::finish(const TimeLoopResult &)
   {
     std::size_t first = 0, last = bins.size();

@@ -20,6 +20,18 @@ namespace estep
       }
   }
 
+  void
+  TrajectoryNorm::save_state(StateWriter &out) const
+  {
+    out.put(integral);
+  }
+
+  void
+  TrajectoryNorm::resume(StateReader &in)
+  {
+    integral = in.get<double>();
+  }
+
   double
   TrajectoryNorm::h1_norm() const
   {

@@ -62,6 +62,59 @@ namespace estep
 
 
   void
+  EnergyStepping::save_state(StateWriter &out) const
+  {
+    TimeIntegrator::save_state(out);
+    out.put(E_h0);
+    out.put(energy_scale);
+    out.put(level);
+    out.put(static_cast<int>(departure));
+    out.put(last_flight);
+    out.put_vector(q_start);
+    out.put_vector(v_flight);
+    out.put(level_flight);
+    for (const std::uint64_t n : {search_statistics.n_value_evaluations,
+                                  search_statistics.n_enclosures,
+                                  search_statistics.n_locate_evaluations,
+                                  search_statistics.max_intervals_in_one_search,
+                                  n_climbs,
+                                  n_descents,
+                                  n_reflections,
+                                  n_constraint_events,
+                                  n_gradients})
+      out.put(n);
+  }
+
+
+
+  void
+  EnergyStepping::load_state(StateReader &in)
+  {
+    TimeIntegrator::load_state(in);
+    E_h0         = in.get<double>();
+    energy_scale = in.get<double>();
+    level        = in.get<long long>();
+    departure    = static_cast<Departure>(in.get<int>());
+    last_flight  = in.get<double>();
+    in.get_vector(q_start);
+    in.get_vector(v_flight);
+    level_flight = in.get<long long>();
+    for (std::uint64_t *n : {&search_statistics.n_value_evaluations,
+                             &search_statistics.n_enclosures,
+                             &search_statistics.n_locate_evaluations,
+                             &search_statistics.max_intervals_in_one_search,
+                             &n_climbs,
+                             &n_descents,
+                             &n_reflections,
+                             &n_constraint_events,
+                             &n_gradients})
+      *n = in.get<std::uint64_t>();
+    gradient_buffer.reinit(q.size());
+  }
+
+
+
+  void
   EnergyStepping::step(const double t_limit)
   {
     const double horizon = t_limit - t;

@@ -107,6 +107,31 @@ namespace estep
 
 
 
+  void
+  ExplicitNewmark::save_state(StateWriter &out) const
+  {
+    TimeIntegrator::save_state(out);
+    out.put_vector(acceleration);
+    out.put_vector(q_old);
+    out.put_vector(v_old);
+    out.put(n_gradients);
+  }
+
+
+
+  void
+  ExplicitNewmark::load_state(StateReader &in)
+  {
+    TimeIntegrator::load_state(in);
+    in.get_vector(acceleration);
+    in.get_vector(q_old);
+    in.get_vector(v_old);
+    n_gradients = in.get<std::uint64_t>();
+    gradient_buffer.reinit(q.size());
+  }
+
+
+
   namespace
   {
     void

@@ -72,6 +72,34 @@ namespace estep
 
 
 
+  void
+  TimeIntegrator::save_state(StateWriter &out) const
+  {
+    out.put(t);
+    out.put(t_previous);
+    out.put_vector(q);
+    out.put_vector(v);
+    out.put(steps);
+    out.put(smallest_step);
+    out.put(largest_step);
+  }
+
+
+
+  void
+  TimeIntegrator::load_state(StateReader &in)
+  {
+    t          = in.get<double>();
+    t_previous = in.get<double>();
+    in.get_vector(q);
+    in.get_vector(v);
+    steps         = in.get<std::uint64_t>();
+    smallest_step = in.get<double>();
+    largest_step  = in.get<double>();
+  }
+
+
+
   double
   relative_drift(const double a, const double b, const double scale)
   {

@@ -56,102 +56,238 @@ namespace estep
 
 
 
+  void
+  TimeLoopState::save(StateWriter &out) const
+  {
+    out.put(blowup_bound);
+    out.put(steps_in_place);
+  }
+
+
+
+  void
+  TimeLoopState::load(StateReader &in)
+  {
+    blowup_bound   = in.get<double>();
+    steps_in_place = in.get<std::uint64_t>();
+  }
+
+
+
+  namespace
+  {
+    /**
+     * The times t_k = t0 + k interval below t_end, then t_end: output times
+     * and checkpoint times. next() is the first one after the time reached.
+     */
+    class TimeGrid
+    {
+    public:
+      TimeGrid(const double t0, const double t_end, const double interval)
+        : t0(t0)
+        , t_end(t_end)
+        , interval(interval)
+      {}
+
+      /** The grid's k-th time. */
+      double
+      at(const std::uint64_t k) const
+      {
+        const double t_k = t0 + static_cast<double>(k) * interval;
+        return (interval > 0. && t_k < t_end) ? t_k : t_end;
+      }
+
+      /** Whether every time of the grid has been passed. */
+      bool
+      done() const
+      {
+        return finished;
+      }
+
+      /** The first time not passed yet. */
+      double
+      next() const
+      {
+        return at(k);
+      }
+
+      /** Pass the next time. */
+      void
+      advance()
+      {
+        finished = (at(k) == t_end);
+        ++k;
+      }
+
+      /** Pass every time up to and including @p t, without visiting them
+       * (where a resumed run takes over). */
+      void
+      skip_to(const double t)
+      {
+        k = 0;
+        if (interval > 0. && t > t0)
+          {
+            const double estimate = std::floor((t - t0) / interval) - 1.;
+            if (estimate > 0. && estimate < 1e18)
+              k = static_cast<std::uint64_t>(estimate);
+          }
+        while (!finished && at(k) <= t)
+          advance();
+      }
+
+    private:
+      const double  t0, t_end, interval;
+      std::uint64_t k        = 0;
+      bool          finished = false;
+    };
+
+
+
+    TimeLoopResult
+    continue_time_loop(TimeIntegrator                   &integrator,
+                       const TimeLoopSettings           &settings,
+                       const std::vector<RunObserver *> &observers,
+                       TimeLoopState                     state,
+                       const bool                        resumed)
+    {
+      using Clock                        = std::chrono::steady_clock;
+      const auto              wall_start = Clock::now();
+      const MechanicalSystem &system     = integrator.mechanical_system();
+      TimeLoopResult          result;
+      const double            t_end = settings.end_time;
+
+      TimeGrid outputs(settings.start_time, t_end, settings.output_interval);
+      TimeGrid checkpoints(settings.start_time,
+                           t_end,
+                           settings.checkpoint_interval);
+      if (resumed)
+        outputs.skip_to(integrator.time());
+      checkpoints.skip_to(integrator.time());
+      auto last_checkpoint = wall_start;
+
+      const auto emit_outputs_until = [&](const double t_reached) {
+        // Output times in (previous, t_reached], the end time last.
+        while (!outputs.done() && outputs.next() <= t_reached)
+          {
+            const Snapshot snapshot = integrator.dense_output(outputs.next());
+            for (RunObserver *observer : observers)
+              observer->observe(snapshot);
+            outputs.advance();
+          }
+      };
+      const auto write_checkpoint = [&]() {
+        settings.write_checkpoint(state);
+        last_checkpoint = Clock::now();
+      };
+      const auto checkpoint_due = [&]() {
+        if (!settings.write_checkpoint)
+          return false;
+        if (settings.checkpoint_interval > 0. && !checkpoints.done() &&
+            checkpoints.next() <= integrator.time())
+          {
+            checkpoints.skip_to(integrator.time());
+            return true;
+          }
+        return settings.checkpoint_wall_seconds > 0. &&
+               std::chrono::duration<double>(Clock::now() - last_checkpoint)
+                   .count() >= settings.checkpoint_wall_seconds;
+      };
+
+      try
+        {
+          if (!resumed)
+            emit_outputs_until(settings.start_time);
+          while (integrator.time() < t_end)
+            {
+              const double t_before = integrator.time();
+              integrator.step(t_end);
+              state.steps_in_place =
+                (integrator.time() > t_before) ? 0 : state.steps_in_place + 1;
+              if (state.steps_in_place == max_steps_in_place)
+                {
+                  std::ostringstream message;
+                  message << "The run stalled at t = " << integrator.time()
+                          << ": " << max_steps_in_place
+                          << " steps in a row did not advance the time.";
+                  throw StalledRun(message.str());
+                }
+              const double T = kinetic_energy(system, integrator.velocity());
+              if (!std::isfinite(T) ||
+                  (state.blowup_bound > 0. && T > state.blowup_bound))
+                {
+                  std::ostringstream message;
+                  message
+                    << "The run became unstable at t = " << integrator.time()
+                    << ": the kinetic energy " << T << " exceeds "
+                    << settings.blowup_factor
+                    << " times the initial energy scale (Blow-up factor).";
+                  throw UnstableRun(message.str());
+                }
+              for (RunObserver *observer : observers)
+                observer->after_step(integrator);
+              emit_outputs_until(integrator.time());
+              if (interruption != 0)
+                {
+                  result.status = RunStatus::interrupted;
+                  result.signal = interruption;
+                  std::ostringstream message;
+                  message << "Interrupted by signal " << result.signal
+                          << " at t = " << integrator.time() << ".";
+                  result.message = message.str();
+                  break;
+                }
+              if (integrator.time() < t_end && checkpoint_due())
+                write_checkpoint();
+            }
+          if (settings.write_checkpoint)
+            write_checkpoint();
+        }
+      catch (const UnstableRun &unstable)
+        {
+          result.status  = RunStatus::unstable;
+          result.message = unstable.what();
+        }
+      catch (const StalledRun &stalled)
+        {
+          result.status  = RunStatus::stalled;
+          result.message = stalled.what();
+        }
+      catch (const OutputFailed &failure)
+        {
+          result.status  = RunStatus::failed;
+          result.message = failure.what();
+        }
+      result.final_time   = integrator.time();
+      result.wall_seconds = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - wall_start)
+                              .count();
+      return result;
+    }
+  } // namespace
+
+
+
   TimeLoopResult
   run_time_loop(TimeIntegrator                   &integrator,
                 const TimeLoopSettings           &settings,
                 const std::vector<RunObserver *> &observers)
   {
-    const auto              wall_start = std::chrono::steady_clock::now();
-    const MechanicalSystem &system     = integrator.mechanical_system();
-    TimeLoopResult          result;
+    const MechanicalSystem &system = integrator.mechanical_system();
+    TimeLoopState           state;
+    const double            T0 = kinetic_energy(system, integrator.velocity());
+    const double            V0 = system.energy(integrator.position());
+    state.blowup_bound = settings.blowup_factor * (std::abs(T0) + std::abs(V0));
+    return continue_time_loop(integrator, settings, observers, state, false);
+  }
 
-    const double t0    = settings.start_time;
-    const double t_end = settings.end_time;
-    const double T0    = kinetic_energy(system, integrator.velocity());
-    const double V0    = system.energy(integrator.position());
-    const double bound = settings.blowup_factor * (std::abs(T0) + std::abs(V0));
-    unsigned int n_out = 0;
-    const auto   output_at = [&](const unsigned int k) {
-      const double t_k = t0 + k * settings.output_interval;
-      return (settings.output_interval > 0. && t_k < t_end) ? t_k : t_end;
-    };
 
-    const auto emit_outputs_until = [&](const double t_reached) {
-      // Output times in (previous, t_reached], the end time last.
-      while (n_out != static_cast<unsigned int>(-1))
-        {
-          const double t_k = output_at(n_out);
-          if (t_k > t_reached)
-            break;
-          const Snapshot snapshot = integrator.dense_output(t_k);
-          for (RunObserver *observer : observers)
-            observer->observe(snapshot);
-          n_out = (t_k == t_end) ? static_cast<unsigned int>(-1) : n_out + 1;
-        }
-    };
 
-    emit_outputs_until(t0);
-    try
-      {
-        unsigned int n_steps_in_place = 0;
-        while (integrator.time() < t_end)
-          {
-            const double t_before = integrator.time();
-            integrator.step(t_end);
-            n_steps_in_place =
-              (integrator.time() > t_before) ? 0 : n_steps_in_place + 1;
-            if (n_steps_in_place == max_steps_in_place)
-              {
-                std::ostringstream message;
-                message << "The run stalled at t = " << integrator.time()
-                        << ": " << max_steps_in_place
-                        << " steps in a row did not advance the time.";
-                throw StalledRun(message.str());
-              }
-            const double T = kinetic_energy(system, integrator.velocity());
-            if (!std::isfinite(T) || (bound > 0. && T > bound))
-              {
-                std::ostringstream message;
-                message << "The run became unstable at t = "
-                        << integrator.time() << ": the kinetic energy " << T
-                        << " exceeds " << settings.blowup_factor
-                        << " times the initial energy scale (Blow-up factor).";
-                throw UnstableRun(message.str());
-              }
-            for (RunObserver *observer : observers)
-              observer->after_step(integrator);
-            emit_outputs_until(integrator.time());
-            if (interruption != 0)
-              {
-                result.status = RunStatus::interrupted;
-                result.signal = interruption;
-                std::ostringstream message;
-                message << "Interrupted by signal " << result.signal
-                        << " at t = " << integrator.time() << ".";
-                result.message = message.str();
-                break;
-              }
-          }
-      }
-    catch (const UnstableRun &unstable)
-      {
-        result.status  = RunStatus::unstable;
-        result.message = unstable.what();
-      }
-    catch (const StalledRun &stalled)
-      {
-        result.status  = RunStatus::stalled;
-        result.message = stalled.what();
-      }
-    catch (const OutputFailed &failure)
-      {
-        result.status  = RunStatus::failed;
-        result.message = failure.what();
-      }
-    result.final_time   = integrator.time();
-    result.wall_seconds = std::chrono::duration<double>(
-                            std::chrono::steady_clock::now() - wall_start)
-                            .count();
-    return result;
+  TimeLoopResult
+  resume_time_loop(TimeIntegrator                   &integrator,
+                   const TimeLoopSettings           &settings,
+                   const std::vector<RunObserver *> &observers,
+                   const TimeLoopState              &state)
+  {
+    return continue_time_loop(integrator, settings, observers, state, true);
   }
 } // namespace estep

@@ -34,6 +34,10 @@ namespace estep
     double      end_time;
     double      blowup_factor;
     double      history_interval;
+    /** Checkpoints every this much simulated time (0: none) and every this
+     * many seconds of wall time (0: none). */
+    double checkpoint_interval;
+    double checkpoint_wall_seconds;
   };
 } // namespace estep
 

@@ -45,7 +45,28 @@ namespace estep
     const ImplicitParameters &
     parameters() const;
 
+    /** Also the state at the start of the last step and the work counters.
+     */
+    void
+    save_state(StateWriter &out) const override;
+
+    /**
+     * Restores the state and restarts the solver there, as initialize() does
+     * (SUNDIALS keeps no state that could be restored: the step-size and
+     * order history of ARKode and IDA start afresh, so their continuation is
+     * not bit-identical; the energy-momentum step depends on the state alone
+     * and continues exactly). The work counters continue from their stored
+     * values.
+     */
+    void
+    load_state(StateReader &in) override;
+
   protected:
+    /** @p counts plus what the counters had reached at the checkpoint a run
+     * was resumed from (the steps excepted: they are restored). */
+    std::vector<Counter>
+    with_resumed_counts(std::vector<Counter> counts) const;
+
     /** Store the current state as the start of the next step. */
     void
     begin_step();
@@ -56,6 +77,11 @@ namespace estep
 
     ImplicitParameters settings;
     Vector             q_old, v_old;
+
+  private:
+    /** The counters at the checkpoint a run was resumed from, minus their
+     * values after the solver's restart. */
+    std::vector<Counter> resumed_counts;
   };
 } // namespace estep
 

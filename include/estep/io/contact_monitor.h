@@ -54,6 +54,13 @@ namespace estep
     void
     after_step(const TimeIntegrator &integrator) override;
 
+    /** The counts, extremes and contact instants so far. */
+    void
+    save_state(StateWriter &out) const override;
+
+    void
+    resume(StateReader &in) override;
+
     /** Adds "contact": summary() from the initial to the current state. */
     void
     add_to_summary(JsonObject &summary) const override;

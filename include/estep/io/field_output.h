@@ -51,6 +51,15 @@ namespace estep
     void
     start() override;
 
+    /** The next snapshot time and the series written so far. */
+    void
+    save_state(StateWriter &out) const override;
+
+    /** Starts again, with the series of the checkpoint (VTU only: an HDF5
+     * series cannot be resumed). */
+    void
+    resume(StateReader &in) override;
+
     /** Writes the snapshots due in (previous_time(), time()], and the start. */
     void
     after_step(const TimeIntegrator &integrator) override;

@@ -30,6 +30,14 @@ namespace estep
     void
     start() override;
 
+    /** The file's size and the step extremes since the last row. */
+    void
+    save_state(StateWriter &out) const override;
+
+    /** Cuts the file back to its size at the checkpoint and appends. */
+    void
+    resume(StateReader &in) override;
+
     void
     observe(const Snapshot &snapshot) override;
 
@@ -41,6 +49,8 @@ namespace estep
     const std::string     filename;
     const double          start_time;
     std::ofstream         out;
+    /** The file's size after the last row. */
+    std::uint64_t bytes_written = 0;
     /** Extreme steps since the last row; min > max when none ended since. */
     double smallest_step_since_row, largest_step_since_row;
   };

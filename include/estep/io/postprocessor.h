@@ -1,6 +1,7 @@
 #ifndef estep_io_postprocessor_h
 #define estep_io_postprocessor_h
 
+#include <estep/base/binary_state.h>
 #include <estep/base/json_writer.h>
 #include <estep/base/plugin_registry.h>
 #include <estep/time_integration/time_loop.h>
@@ -27,6 +28,23 @@ namespace estep
      * (the run then fails). The default does nothing. */
     virtual void
     start();
+
+    /**
+     * @name Checkpoints
+     * A postprocessor that carries something from step to step (counts,
+     * extremes, the list of files written, the size of a file it appends to)
+     * stores it in save_state(); a resumed run calls resume() instead of
+     * start() with what it stored, to continue its outputs where the
+     * checkpoint was taken (e.g. cutting a file back to its size then and
+     * appending). The defaults store nothing and call start().
+     * @{
+     */
+    virtual void
+    save_state(StateWriter &out) const;
+
+    virtual void
+    resume(StateReader &in);
+    /** @} */
 
     /** The run has ended as @p result says: write what is written at the end.
      * The default does nothing. */

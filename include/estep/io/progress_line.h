@@ -23,6 +23,11 @@ namespace estep
     void
     after_step(const TimeIntegrator &integrator) override;
 
+    /** Rates and the time left from now on, the run being at time @p t after
+     * @p steps steps (a resumed run). */
+    void
+    watch_from(const double t, const std::uint64_t steps);
+
     /** Whether standard error is a terminal (the default for showing the line).
      */
     static bool
@@ -30,6 +35,8 @@ namespace estep
 
   private:
     const double                          start_time, end_time;
+    double                                first_time;
+    std::uint64_t                         first_step = 0;
     std::chrono::steady_clock::time_point wall_start, last_print;
     bool                                  printed = false;
   };

@@ -36,6 +36,10 @@ namespace estep
     void
     start() override;
 
+    /** Appends to the log file, with a line saying where the run resumed. */
+    void
+    resume(StateReader &in) override;
+
     void
     after_step(const TimeIntegrator &integrator) override;
 
@@ -56,6 +60,9 @@ namespace estep
     std::unique_ptr<ProgressLine>         line;
     std::ofstream                         out;
     std::chrono::steady_clock::time_point wall_start, last_line;
+    /** Where this process took the run over (the start, or a checkpoint). */
+    double        first_time;
+    std::uint64_t first_step = 0;
   };
 } // namespace estep
 

@@ -24,6 +24,13 @@ namespace estep
     void
     after_step(const TimeIntegrator &integrator) override;
 
+    /** The counts. */
+    void
+    save_state(StateWriter &out) const override;
+
+    void
+    resume(StateReader &in) override;
+
     /** Write the non-empty range of bins as CSV (atomically). */
     void
     finish(const TimeLoopResult &result) override;

@@ -18,6 +18,13 @@ namespace estep
     void
     after_step(const TimeIntegrator &integrator) override;
 
+    /** The integral so far. */
+    void
+    save_state(StateWriter &out) const override;
+
+    void
+    resume(StateReader &in) override;
+
     /** Adds "h1 norm". */
     void
     add_to_summary(JsonObject &summary) const override;

@@ -75,6 +75,14 @@ namespace estep
     std::vector<std::string>
     warnings() const override;
 
+    /** Also the terrace index, the departure, the last flight and the
+     * counters. */
+    void
+    save_state(StateWriter &out) const override;
+
+    void
+    load_state(StateReader &in) override;
+
     /** The current terrace index L ((L + c) h <= V < (L + 1 + c) h up to the
      * root tolerance). */
     long long

@@ -38,6 +38,13 @@ namespace estep
     std::vector<Counter>
     counters() const override;
 
+    /** Also the acceleration, the previous state and the counter. */
+    void
+    save_state(StateWriter &out) const override;
+
+    void
+    load_state(StateReader &in) override;
+
   private:
     /** a = -M^-1 grad V(x). */
     void

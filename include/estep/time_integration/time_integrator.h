@@ -1,6 +1,7 @@
 #ifndef estep_time_integration_time_integrator_h
 #define estep_time_integration_time_integrator_h
 
+#include <estep/base/binary_state.h>
 #include <estep/base/json_writer.h>
 #include <estep/systems/mechanical_system.h>
 
@@ -81,6 +82,26 @@ namespace estep
      */
     virtual std::vector<std::string>
     warnings() const;
+
+    /**
+     * @name Checkpoints
+     * @{
+     */
+    /**
+     * Store everything the next steps depend on, so that load_state() on an
+     * integrator built from the same parameters continues the run exactly.
+     * The default stores the time, the previous time, q, v and the step
+     * statistics; an integrator with more state (a terrace index, a last
+     * flight, work counters) extends it, calling this first.
+     */
+    virtual void
+    save_state(StateWriter &out) const;
+
+    /** Restore what save_state() stored (the counterpart of initialize() for
+     * a resumed run). */
+    virtual void
+    load_state(StateReader &in);
+    /** @} */
 
     double
     time() const

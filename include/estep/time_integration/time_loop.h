@@ -3,6 +3,7 @@
 
 #include <estep/time_integration/time_integrator.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,22 @@ namespace estep
     using std::runtime_error::runtime_error;
   };
 
+  /** What the time loop itself carries from step to step (the rest of a
+   * run's state is the integrator's and the observers'). */
+  struct TimeLoopState
+  {
+    /** The kinetic energy above which the run is unstable (from the initial
+     * state). */
+    double blowup_bound = 0.;
+    /** Steps in a row that left the time where it was. */
+    std::uint64_t steps_in_place = 0;
+
+    void
+    save(StateWriter &out) const;
+    void
+    load(StateReader &in);
+  };
+
   /** Settings of the time loop. */
   struct TimeLoopSettings
   {
@@ -67,6 +84,18 @@ namespace estep
      * times the initial energy scale |T0| + |V0| (checked after every step).
      */
     double blowup_factor = 1e3;
+
+    /**
+     * Checkpoints: write_checkpoint is called (if set) after the first step
+     * that reaches each multiple of checkpoint_interval of simulated time
+     * past start_time (0: none), after every checkpoint_wall_seconds of wall
+     * time (0: none), and when the run completes or is interrupted. It
+     * receives the loop's own state; the integrator and the observers are in
+     * their post-step states. It may throw OutputFailed.
+     */
+    std::function<void(const TimeLoopState &)> write_checkpoint;
+    double                                     checkpoint_interval     = 0.;
+    double                                     checkpoint_wall_seconds = 0.;
   };
 
   /** What the time loop reports at its end. */
@@ -97,6 +126,19 @@ namespace estep
   run_time_loop(TimeIntegrator                   &integrator,
                 const TimeLoopSettings           &settings,
                 const std::vector<RunObserver *> &observers);
+
+  /**
+   * Continue a run from a checkpoint: @p integrator and the observers have
+   * loaded their states, @p state is the loop's. Output times and
+   * checkpoints continue on the grid of the run from settings.start_time, the
+   * start not being observed again; the result is that of the uninterrupted
+   * run, bit for bit, when the integrator restores its state exactly.
+   */
+  TimeLoopResult
+  resume_time_loop(TimeIntegrator                   &integrator,
+                   const TimeLoopSettings           &settings,
+                   const std::vector<RunObserver *> &observers,
+                   const TimeLoopState              &state);
 } // namespace estep
 
 #endif

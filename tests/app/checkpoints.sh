@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# Checkpoints and --resume: a run killed at any instant (SIGKILL) and resumed ends exactly as
+# the uninterrupted run, for energy-stepping with and without contact, Newmark and the
+# energy-momentum method; the SUNDIALS methods resume from the checkpoint's exact state and
+# agree within their tolerance; SIGTERM leaves a final checkpoint; a damaged checkpoint or
+# changed parameters are refused in one line.
+# Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
+set -u
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+files=$ESTEP_SOURCE_DIR/parameter_files
+
+fail() {
+  echo "FAILED: $*"
+  failures=$((failures + 1))
+}
+
+# same_run REFERENCE DIRECTORY WHAT: the outputs of two runs of the same parameters agree bit for
+# bit (the checkpoint holds the final state: positions, velocities, counters; the summaries
+# differ only in wall time and memory).
+same_run() {
+  local f
+  for f in history.csv checkpoint.bin step_histogram.csv; do
+    cmp -s "$1/$f" "$2/$f" || fail "$3: $f differs from the uninterrupted run"
+  done
+  if [[ -d $1/fields ]]; then
+    diff -rq "$1/fields" "$2/fields" > /dev/null || fail "$3: the field snapshots differ"
+  fi
+  diff -q <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") \
+    > /dev/null || fail "$3: summary.json differs: $(diff <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") | head -4)"
+}
+
+# kill_after_checkpoint SECONDS ARGS...: start a run, kill it (SIGKILL) SECONDS after its first
+# checkpoint appears (or when it ends), then resume it.
+kill_after_checkpoint() {
+  local delay=$1
+  shift
+  "$ESTEP" "$@" > /dev/null 2>&1 &
+  local pid=$!
+  while kill -0 $pid 2> /dev/null && [[ ! -f run/checkpoint.bin ]]; do sleep 0.02; done
+  sleep "$delay"
+  kill -9 $pid 2> /dev/null
+  wait $pid 2> /dev/null
+}
+
+# The cube by energy-stepping with every postprocessor that keeps state, killed at 20 random
+# instants of its run.
+cube=("$files/quick_start.prm" --set "Output directory=run" --set "Time integration/End time=3"
+      --set "Output/Checkpoint interval=0.25"
+      --set "Postprocessors/List=history, step histogram, progress, field output, h1 norm"
+      --set "Postprocessors/Field output/Interval=0.5")
+start=$(date +%s.%N)
+"$ESTEP" "${cube[@]}" > /dev/null || fail "the uninterrupted cube run"
+duration=$(echo "$(date +%s.%N) - $start" | bc)
+mv run cube_reference
+resumed_mid_run=0
+for k in $(seq 1 20); do
+  rm -rf run
+  instant=$(awk -v seed="$k" -v d="$duration" 'BEGIN { srand(seed); printf "%.3f", rand() * d }')
+  "$ESTEP" "${cube[@]}" > /dev/null 2>&1 &
+  pid=$!
+  sleep "$instant"
+  kill -9 $pid 2> /dev/null
+  wait $pid 2> /dev/null
+  "$ESTEP" "${cube[@]}" --resume > resume.txt 2>&1 || fail "resume $k (killed after $instant s): $(tail -2 resume.txt)"
+  grep -q "resuming from" resume.txt && resumed_mid_run=$((resumed_mid_run + 1))
+  same_run cube_reference run "cube, killed after $instant s"
+done
+echo "cube: 20 kills in a run of $duration s, $resumed_mid_run resumed from a checkpoint"
+((resumed_mid_run >= 10)) || fail "only $resumed_mid_run of 20 kills left a checkpoint to resume from"
+
+# SIGTERM: the run stops with a final checkpoint and status interrupted (143), and resumes.
+rm -rf run
+"$ESTEP" "${cube[@]}" > /dev/null 2>&1 &
+pid=$!
+while kill -0 $pid 2> /dev/null && [[ ! -f run/checkpoint.bin ]]; do sleep 0.02; done
+kill -TERM $pid
+wait $pid
+rc=$?
+[[ $rc == 143 ]] || fail "SIGTERM: exit code $rc, expected 143"
+grep -q '"status": "interrupted"' run/summary.json || fail "SIGTERM: summary.json does not say interrupted"
+"$ESTEP" "${cube[@]}" --resume > /dev/null 2>&1 || fail "resume after SIGTERM"
+same_run cube_reference run "cube, SIGTERM"
+
+# Contact (the impenetrable balls, killed during the collision), Newmark and energy-momentum.
+check_exact() {
+  local what=$1 delay=$2
+  shift 2
+  rm -rf run reference
+  "$ESTEP" "$@" > /dev/null || fail "$what: the uninterrupted run"
+  mv run reference
+  kill_after_checkpoint "$delay" "$@"
+  grep -q '"status": "running"' run/summary.json || fail "$what: the kill came too late to test anything"
+  "$ESTEP" "$@" --resume > /dev/null 2>&1 || fail "$what: resume"
+  same_run reference run "$what"
+}
+check_exact "impenetrable balls" 0.3 "$files/ball_collision_impenetrable.prm" \
+  --set "Output directory=run" --set "Time integration/End time=0.2" \
+  --set "Output/Checkpoint interval=0.02"
+check_exact "penalty balls" 0.3 "$files/ball_collision.prm" \
+  --set "Output directory=run" --set "Time integration/End time=0.12" \
+  --set "Output/Checkpoint interval=0.01"
+check_exact "explicit newmark" 0.3 "$files/spinning_cube_newmark_0.0082.prm" \
+  --set "Output directory=run" --set "Time integration/End time=20" \
+  --set "Output/Checkpoint interval=1"
+check_exact "energy momentum" 0.5 "$files/spinning_cube_energy_momentum.prm" \
+  --set "Output directory=run" --set "Time integration/End time=2" \
+  --set "Elastic body/Mesh/Subdivisions=4" --set "Output/Checkpoint interval=0.2"
+
+# ARKode restarts at the checkpoint's state: the rows up to the checkpoint are those of the
+# uninterrupted run, the rest agree within the method's accuracy.
+arkode=("$files/spinning_cube_arkode_midpoint.prm" --set "Output directory=run"
+        --set "Time integration/End time=2" --set "Elastic body/Mesh/Subdivisions=4"
+        --set "Output/Checkpoint interval=1" --set "Output/History interval=0.1")
+rm -rf run reference
+"$ESTEP" "${arkode[@]}" > /dev/null || fail "arkode: the uninterrupted run"
+mv run reference
+kill_after_checkpoint 0 "${arkode[@]}"
+"$ESTEP" "${arkode[@]}" --resume > /dev/null 2>&1 || fail "arkode: resume"
+python3 - reference/history.csv run/history.csv <<'PY' || fail "arkode: resumed history"
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+assert len(a) == len(b), f"{len(a)} rows against {len(b)}"
+for ra, rb in zip(a, b):
+    if float(ra["time"]) <= 1.0:
+        assert ra == rb, f"row at t = {ra['time']} differs before the checkpoint"
+    else:
+        d = abs(float(ra["total_energy"]) - float(rb["total_energy"]))
+        assert d < 1e-6, f"total energy at t = {ra['time']} off by {d}"
+PY
+
+# Without a checkpoint --resume starts over; a completed run continues to a later end time;
+# changed parameters and a damaged checkpoint are refused.
+rm -rf run
+"$ESTEP" "${cube[@]}" --resume > out.txt 2>&1 || fail "--resume without a checkpoint"
+grep -q "starts from the beginning" out.txt || fail "--resume without a checkpoint says nothing"
+same_run cube_reference run "--resume without a checkpoint"
+"$ESTEP" "${cube[@]}" --set "Time integration/End time=3.5" --resume > /dev/null 2>&1 \
+  || fail "continuing a completed run"
+tail -1 run/history.csv | grep -q "^3.5," || fail "continuing a completed run: no row at t = 3.5"
+"$ESTEP" "${cube[@]}" --set "Time integration/Energy stepping/Energy step=2e-5" --resume \
+  > out.txt 2> err.txt
+rc=$?
+[[ $rc == 1 ]] || fail "changed parameters: exit code $rc"
+grep -q "Energy stepping/Energy step" err.txt || fail "changed parameters: the entry is not named: $(cat err.txt)"
+[[ $(wc -l < err.txt) == 1 ]] || fail "changed parameters: not one line: $(cat err.txt)"
+printf 'x' | dd of=run/checkpoint.bin bs=1 seek=200 conv=notrunc 2> /dev/null
+"$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 1 ]] || fail "damaged checkpoint: exit code $rc"
+grep -q "damaged" err.txt || fail "damaged checkpoint: $(cat err.txt)"
+
+echo "$failures failure(s)"
+[[ $failures == 0 ]]
