@@ -30,6 +30,21 @@ namespace
                   estep::JsonObject().add("value", largest).add("time", time));
     }
 
+    /** For checkpoints: what it has found so far. */
+    void
+    save_state(estep::StateWriter &out) const override
+    {
+      out.put(largest);
+      out.put(time);
+    }
+
+    void
+    resume(estep::StateReader &in) override
+    {
+      largest = in.get<double>();
+      time    = in.get<double>();
+    }
+
   private:
     double largest = 0., time = 0.;
   };

@@ -75,6 +75,27 @@ namespace
       return {{"steps", n_steps()}, {"gradient evaluations", n_gradients}};
     }
 
+    /** For checkpoints: the base class stores t, q, v and the step
+     * statistics; this integrator adds what it keeps beyond them. */
+    void
+    save_state(estep::StateWriter &out) const override
+    {
+      TimeIntegrator::save_state(out);
+      out.put_vector(q_old);
+      out.put_vector(v_old);
+      out.put(n_gradients);
+    }
+
+    void
+    load_state(estep::StateReader &in) override
+    {
+      TimeIntegrator::load_state(in);
+      in.get_vector(q_old);
+      in.get_vector(v_old);
+      n_gradients = in.get<std::uint64_t>();
+      gradient.reinit(q.size());
+    }
+
   private:
     const double  dt;
     estep::Vector q_old, v_old, gradient;

@@ -35,12 +35,13 @@ namespace estep
     write_durably(const std::string &file, const std::string &bytes)
     {
       int       error = 0;
-      const int fd    = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (fd < 0)
         error = errno;
       for (std::size_t done = 0; error == 0 && done < bytes.size();)
         {
-          const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+          const ssize_t n =
+            ::write(fd, bytes.data() + done, bytes.size() - done);
           if (n > 0)
             done += static_cast<std::size_t>(n);
           else if (n < 0 && errno != EINTR)
@@ -165,8 +166,8 @@ namespace estep
                                "estep.");
     const std::string header = bytes.substr(magic.size(), header_size);
     StateReader       header_reader(header);
-    const auto        size  = header_reader.get<std::uint64_t>();
-    const auto        check = header_reader.get<std::uint64_t>();
+    const auto        size    = header_reader.get<std::uint64_t>();
+    const auto        check   = header_reader.get<std::uint64_t>();
     const std::string payload = bytes.substr(header_size);
     if (payload.size() != size || checksum(payload) != check)
       throw std::runtime_error("The checkpoint <" + file +
@@ -183,8 +184,8 @@ namespace estep
       }
     catch (const std::exception &error)
       {
-        throw std::runtime_error("The checkpoint <" + file + ">: " +
-                                 error.what());
+        throw std::runtime_error("The checkpoint <" + file +
+                                 ">: " + error.what());
       }
   }
 
@@ -227,8 +228,8 @@ namespace estep
       }
     catch (const std::exception &error)
       {
-        throw std::runtime_error("The checkpoint <" + file + ">: " +
-                                 error.what());
+        throw std::runtime_error("The checkpoint <" + file +
+                                 ">: " + error.what());
       }
     return state;
   }

@@ -107,9 +107,10 @@ namespace estep
     struct has_reinit : std::false_type
     {};
     template <typename T>
-    struct has_reinit<T,
-                      std::void_t<decltype(std::declval<T &>().reinit(
-                        std::size_t()))>> : std::true_type
+    struct has_reinit<
+      T,
+      std::void_t<decltype(std::declval<T &>().reinit(std::size_t()))>>
+      : std::true_type
     {};
 
     const char *
