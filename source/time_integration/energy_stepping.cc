@@ -27,10 +27,45 @@ namespace estep
 
 
 
+  void
+  EnergyStepping::use_sampled_search(const SamplingSettings &settings,
+                                     const bool              audit_flights)
+  {
+    sampling = settings;
+    audit    = audit_flights;
+  }
+
+
+
   std::string
   EnergyStepping::name() const
   {
-    return "energy stepping";
+    return sampling ? "energy stepping (sampled crossings)" : "energy stepping";
+  }
+
+
+
+  Crossing
+  EnergyStepping::search(const FreeFlight &flight, const CrossingQuery &query)
+  {
+    if (!sampling)
+      return find_first_crossing(flight, query, search_statistics);
+    const Crossing sampled = find_first_crossing_by_sampling(flight,
+                                                             query,
+                                                             *sampling,
+                                                             search_statistics);
+    if (audit)
+      {
+        SearchStatistics unused;
+        const Crossing   certified = find_first_crossing(flight, query, unused);
+        const double     found     = sampled.direction != 0 ?
+                                       sampled.s :
+                                       std::numeric_limits<double>::infinity();
+        if (certified.direction != 0 &&
+            certified.s < found - 1e-8 * std::abs(found))
+          ++n_stepped_over;
+      }
+    return sampled;
   }
 
 
@@ -81,7 +116,8 @@ namespace estep
                                   n_descents,
                                   n_reflections,
                                   n_constraint_events,
-                                  n_gradients})
+                                  n_gradients,
+                                  n_stepped_over})
       out.put(n);
   }
 
@@ -107,7 +143,8 @@ namespace estep
                              &n_descents,
                              &n_reflections,
                              &n_constraint_events,
-                             &n_gradients})
+                             &n_gradients,
+                             &n_stepped_over})
       *n = in.get<std::uint64_t>();
     gradient_buffer.reinit(q.size());
   }
@@ -142,9 +179,7 @@ namespace estep
         query.departure   = departure;
         try
           {
-            crossing = find_first_crossing(*system.free_flight(q, v),
-                                           query,
-                                           search_statistics);
+            crossing = search(*system.free_flight(q, v), query);
           }
         catch (const SearchStalled &stalled)
           {
@@ -318,17 +353,21 @@ namespace estep
   std::vector<Counter>
   EnergyStepping::counters() const
   {
-    return {{"steps", steps},
-            {"climbs", n_climbs},
-            {"descents", n_descents},
-            {"reflections", n_reflections},
-            {"constraint events", n_constraint_events},
-            {"energy evaluations", search_statistics.n_value_evaluations},
-            {"enclosures", search_statistics.n_enclosures},
-            {"locating evaluations", search_statistics.n_locate_evaluations},
-            {"most intervals in one search",
-             search_statistics.max_intervals_in_one_search},
-            {"gradient evaluations", n_gradients}};
+    std::vector<Counter> counts = {
+      {"steps", steps},
+      {"climbs", n_climbs},
+      {"descents", n_descents},
+      {"reflections", n_reflections},
+      {"constraint events", n_constraint_events},
+      {"energy evaluations", search_statistics.n_value_evaluations},
+      {"enclosures", search_statistics.n_enclosures},
+      {"locating evaluations", search_statistics.n_locate_evaluations},
+      {"most intervals in one search",
+       search_statistics.max_intervals_in_one_search},
+      {"gradient evaluations", n_gradients}};
+    if (audit)
+      counts.emplace_back("crossings stepped over (audit)", n_stepped_over);
+    return counts;
   }
 
 
@@ -382,6 +421,36 @@ namespace estep
         "c) h for every integer k. This is the additive constant of V that "
         "the method leaves free; 0 puts the levels at the integer multiples "
         "of h. Must be smaller than 1.");
+      prm.declare_entry(
+        "Crossing search",
+        "certified",
+        dealii::Patterns::Selection("certified|sampled"),
+        "How the next level crossing of a flight is found. certified: a "
+        "search on rigorous enclosures of V along the flight that never "
+        "misses a crossing (the default). sampled: the reference text's "
+        "way, kept as a comparison: V sampled at Samples per window equally "
+        "spaced points of windows doubling from twice the previous step, "
+        "the first bracket bisected (Bisection steps); it steps over "
+        "crossings that come back between two samples (grazing ones).");
+      prm.declare_entry("Samples per window",
+                        "8",
+                        dealii::Patterns::Integer(1, 1000000),
+                        "Sampled search only: samples of V per search window.");
+      prm.declare_entry(
+        "Bisection steps",
+        "60",
+        dealii::Patterns::Integer(1, 1000),
+        "Sampled search only: the most bisections locating a bracketed "
+        "crossing (fewer once the bracket reaches the round-off of the "
+        "time).");
+      prm.declare_entry(
+        "Audit sampled search",
+        "false",
+        dealii::Patterns::Bool(),
+        "Sampled search only: search every flight with the certified search "
+        "too and count in summary.json the crossings the sampled search "
+        "stepped over (crossings stepped over (audit)); the run follows the "
+        "sampled answers. Costs about one certified search per step more.");
       prm.leave_subsection();
     }
 
@@ -390,8 +459,13 @@ namespace estep
                            const MechanicalSystem   &system)
     {
       prm.enter_subsection("Energy stepping");
-      const double h = prm.get_double("Energy step");
-      const double c = prm.get_double("Terrace offset");
+      const double     h       = prm.get_double("Energy step");
+      const double     c       = prm.get_double("Terrace offset");
+      const bool       sampled = prm.get("Crossing search") == "sampled";
+      SamplingSettings sampling;
+      sampling.samples_per_window = prm.get_integer("Samples per window");
+      sampling.bisection_steps    = prm.get_integer("Bisection steps");
+      const bool audit            = prm.get_bool("Audit sampled search");
       prm.leave_subsection();
       if (!(h > 0.))
         throw std::runtime_error(
@@ -399,7 +473,14 @@ namespace estep
       if (!(c < 1.))
         throw std::runtime_error("Time integration/Energy stepping/Terrace "
                                  "offset: must be smaller than 1.");
-      return std::make_unique<EnergyStepping>(system, h, c);
+      if (audit && !sampled)
+        throw std::runtime_error(
+          "Time integration/Energy stepping/Audit sampled search: audits the "
+          "sampled search; set Crossing search = sampled.");
+      auto integrator = std::make_unique<EnergyStepping>(system, h, c);
+      if (sampled)
+        integrator->use_sampled_search(sampling, audit);
+      return integrator;
     }
   } // namespace
 } // namespace estep

@@ -2,7 +2,10 @@
 #define estep_time_integration_energy_stepping_h
 
 #include <estep/time_integration/first_crossing_search.h>
+#include <estep/time_integration/sampled_crossing_search.h>
 #include <estep/time_integration/time_integrator.h>
+
+#include <optional>
 
 namespace estep
 {
@@ -45,6 +48,16 @@ namespace estep
     EnergyStepping(const MechanicalSystem &system,
                    const double            energy_step,
                    const double            terrace_offset = 0.);
+
+    /**
+     * Find crossings by sampling (find_first_crossing_by_sampling(), the
+     * reference text's way, which can step over grazing crossings) instead
+     * of the certified search. With @p audit, every flight is searched by the
+     * certified search as well, and the crossings the sampled search stepped
+     * over are counted (the run follows the sampled answers).
+     */
+    void
+    use_sampled_search(const SamplingSettings &settings, const bool audit);
 
     std::string
     name() const override;
@@ -146,7 +159,14 @@ namespace estep
 
     mutable Vector   gradient_buffer;
     SearchStatistics search_statistics;
-    std::uint64_t    n_climbs = 0, n_descents = 0, n_reflections = 0,
+    /** The sampled search, if chosen, and its audit. */
+    std::optional<SamplingSettings> sampling;
+    bool                            audit          = false;
+    std::uint64_t                   n_stepped_over = 0;
+    /** The next event of the flight (q, v) as the chosen search finds it. */
+    Crossing
+                  search(const FreeFlight &flight, const CrossingQuery &query);
+    std::uint64_t n_climbs = 0, n_descents = 0, n_reflections = 0,
                   n_constraint_events = 0, n_gradients = 0;
   };
 } // namespace estep
