@@ -88,7 +88,8 @@ namespace estep
               const std::string entry = line.substr(4);
               const std::string name  = entry.substr(0, entry.find('='));
               path += name.substr(0, name.find_last_not_of(' ') + 1);
-              if (path != "Time integration/End time" &&
+              if (path != "Output directory" &&
+                  path != "Time integration/End time" &&
                   path != "Output/Checkpoint interval" &&
                   path != "Output/Checkpoint wall interval")
                 entries.push_back(path + " =" +
@@ -206,7 +207,8 @@ namespace estep
             differing.substr(0, differing.find(" =")) +
             (i < then.size() ? ", then" + then[i].substr(then[i].find(" =")) :
                                "") +
-            "); only the end time and the checkpoint entries may change.");
+            "); only the end time, the checkpoint entries and the output "
+            "directory may change.");
         }
   }
 

@@ -18,10 +18,10 @@ namespace estep
                       16. * epsilon * std::abs(level));
     };
     // A departure level counts once f has left its band into the terrace.
-    bool lower_armed = query.departure != Departure::from_lower_level;
-    bool upper_armed = query.departure != Departure::from_upper_level;
-    const double lower_band = band(query.lower_level);
-    const double upper_band = band(query.upper_level);
+    bool         lower_armed = query.departure != Departure::from_lower_level;
+    bool         upper_armed = query.departure != Departure::from_upper_level;
+    const double lower_band  = band(query.lower_level);
+    const double upper_band  = band(query.upper_level);
 
     // +1 / -1 where f lies on or beyond the upper / lower level, else 0.
     const auto side = [&](const double f) {
@@ -43,7 +43,7 @@ namespace estep
       window = query.horizon;
     while (a < query.horizon)
       {
-        const double b = std::min(a + window, query.horizon);
+        const double b        = std::min(a + window, query.horizon);
         double       s_inside = a;
         for (unsigned int k = 1; k <= n; ++k)
           {

@@ -1,16 +1,17 @@
-// The sampled crossing search (the reference text's way, kept as a comparison): it locates
-// ordinary crossings like the certified search, steps over a thin bump between two samples
-// (which the certified search finds), does not take its departure level for a crossing, and
-// its audit in EnergyStepping counts what it stepped over on a real system.
+// The sampled crossing search (the reference text's way, kept as a comparison):
+// it locates ordinary crossings like the certified search, steps over a thin
+// bump between two samples (which the certified search finds), does not take
+// its departure level for a crossing, and its audit in EnergyStepping counts
+// what it stepped over on a real system.
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/sampled_crossing_search.h>
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "argon.h"
 #include "test_flights.h"
+
+#include <cmath>
 
 namespace
 {
@@ -25,8 +26,11 @@ namespace
     // f(s) = 0.5 + s reaches the upper level 1 at s = 0.5.
     const PolynomialFlight flight({0.5, 1.});
     SearchStatistics       statistics;
-    const Crossing         crossing = find_first_crossing_by_sampling(
-      flight, {0., 1., Departure::interior, 2., 0.1}, eight_samples, statistics);
+    const Crossing         crossing =
+      find_first_crossing_by_sampling(flight,
+                                      {0., 1., Departure::interior, 2., 0.1},
+                                      eight_samples,
+                                      statistics);
     EXPECT_EQ(crossing.direction, +1);
     EXPECT_LE(crossing.s, 0.5);
     EXPECT_NEAR(crossing.s, 0.5, 1e-15);
@@ -53,7 +57,8 @@ namespace
     const BumpFlight wide(0.5, 0.6, 0.35, 0.1);
     const Crossing   sampled_wide =
       find_first_crossing_by_sampling(wide, query, eight_samples, statistics);
-    const Crossing certified_wide = find_first_crossing(wide, query, statistics);
+    const Crossing certified_wide =
+      find_first_crossing(wide, query, statistics);
     EXPECT_EQ(sampled_wide.direction, +1);
     EXPECT_NEAR(sampled_wide.s, certified_wide.s, 1e-13);
   }
@@ -63,11 +68,14 @@ namespace
     // Departing from the upper level 1 with f at 1 + 2 eps (round-off above
     // it) and falling: the answer is the lower level 0 at s = 1 + 2 eps, not
     // the upper level at s = 0.
-    const double           above = 1. + 2. * std::numeric_limits<double>::epsilon();
+    const double above = 1. + 2. * std::numeric_limits<double>::epsilon();
     const PolynomialFlight flight({above, -1.});
     SearchStatistics       statistics;
     const Crossing         down = find_first_crossing_by_sampling(
-      flight, {0., 1., Departure::from_upper_level, 2., 0.1}, eight_samples, statistics);
+      flight,
+      {0., 1., Departure::from_upper_level, 2., 0.1},
+      eight_samples,
+      statistics);
     EXPECT_EQ(down.direction, -1);
     EXPECT_NEAR(down.s, 1., 1e-14);
 
@@ -75,7 +83,10 @@ namespace
     // 1/3 (f = 1 - s + 3 s^2): that return is a crossing like any other.
     const PolynomialFlight back({1., -1., 3.});
     const Crossing         up = find_first_crossing_by_sampling(
-      back, {0., 1., Departure::from_upper_level, 2., 0.1}, eight_samples, statistics);
+      back,
+      {0., 1., Departure::from_upper_level, 2., 0.1},
+      eight_samples,
+      statistics);
     EXPECT_EQ(up.direction, +1);
     EXPECT_NEAR(up.s, 1. / 3., 1e-14);
   }

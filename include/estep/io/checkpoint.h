@@ -41,8 +41,9 @@ namespace estep
 
     /**
      * Throws std::runtime_error naming the first entry in which @p parameters
-     * (as printed) differ from the checkpoint's. Only the end time and the
-     * checkpoint entries may change on a resume.
+     * (as printed) differ from the checkpoint's. Only the end time, the
+     * checkpoint entries and the output directory (moved with its
+     * checkpoint) may change on a resume.
      */
     void
     check_parameters(const std::string &parameters) const;
