@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The convergence of energy-stepping's tracked point on the spinning cube (doc/accuracy_per_cost.md).
+# Convergence of energy-stepping's tracked point on the spinning cube (doc/accuracy_per_cost.md).
 # The seed's cube (parameter_files/spinning_cube.prm) to t = 2, before the first maximum of V, by
 # energy-stepping at h = 1e-5, 2.5e-6 and 6.25e-7, against explicit Newmark at dt = 2.5e-4 (its
 # own error, measured against dt = 5e-4 here and scaled by dt^2, is far below the smallest
