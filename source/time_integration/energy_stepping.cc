@@ -388,14 +388,35 @@ namespace estep
   std::vector<std::string>
   EnergyStepping::warnings() const
   {
-    if (h <= energy_scale)
-      return {};
-    std::ostringstream text;
-    text << "Time integration/Energy stepping/Energy step: h = " << h
-         << " exceeds the initial energy scale |T| + |V| = " << energy_scale
-         << " of the system: its terraces are coarser than the motion and "
-            "the results say little.";
-    return {text.str()};
+    std::vector<std::string> found;
+    if (h > energy_scale)
+      {
+        std::ostringstream text;
+        text << "Time integration/Energy stepping/Energy step: h = " << h
+             << " exceeds the initial energy scale |T| + |V| = " << energy_scale
+             << " of the system: its terraces are coarser than the motion and "
+                "the results say little.";
+        found.push_back(text.str());
+      }
+    // Mostly reflections: the motion keeps bouncing off the level above
+    // instead of climbing and descending through the terraces, and where the
+    // levels lie decides it (doc/spinning_cube.md).
+    const std::uint64_t crossings = n_climbs + n_descents + n_reflections;
+    if (crossings >= min_crossings_for_reflection_warning &&
+        static_cast<double>(n_reflections) >
+          reflection_warning_share * static_cast<double>(crossings))
+      {
+        std::ostringstream text;
+        text << "Time integration/Energy stepping/Energy step: "
+             << n_reflections << " of the " << crossings
+             << " level crossings were reflections (more than "
+             << 100. * reflection_warning_share
+             << " %): the motion keeps reflecting off a level, and at this "
+                "energy step it depends on where the levels lie (Terrace "
+                "offset); a smaller energy step gives a result that does not.";
+        found.push_back(text.str());
+      }
+    return found;
   }
 
 

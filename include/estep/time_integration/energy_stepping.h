@@ -84,9 +84,18 @@ namespace estep
     void
     add_energies_to_summary(JsonObject &energies) const override;
 
-    /** A warning when h exceeds the initial |T| + |V|. */
+    /**
+     * A warning when h exceeds the initial |T| + |V|, and one when the run so
+     * far has mostly reflected: of at least
+     * min_crossings_for_reflection_warning level crossings, more than the
+     * share reflection_warning_share were reflections. The result then
+     * depends on the terrace offset (doc/spinning_cube.md).
+     */
     std::vector<std::string>
     warnings() const override;
+
+    static constexpr std::uint64_t min_crossings_for_reflection_warning = 100;
+    static constexpr double        reflection_warning_share             = 0.9;
 
     /** Also the terrace index, the departure, the last flight and the
      * counters. */
