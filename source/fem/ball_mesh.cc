@@ -13,10 +13,33 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace estep
 {
+  namespace
+  {
+    /** @p x with six significant digits. */
+    std::string
+    short_number(const double x)
+    {
+      std::ostringstream text;
+      text << x;
+      return text.str();
+    }
+
+    [[maybe_unused]] std::string
+    gmsh_failed(const double mesh_size)
+    {
+      return "gmsh could not mesh a ball with the mesh size " +
+             short_number(mesh_size) + " (relative to the radius)";
+    }
+  } // namespace
+
+
+
   void
   make_ball_mesh(dealii::Triangulation<3, 3> &tria,
                  const double                 mesh_size,
@@ -25,7 +48,17 @@ namespace estep
   {
     AssertThrow(mesh_size > 0. && radius > 0.,
                 dealii::ExcMessage(
-                  "make_ball_mesh: mesh size and radius must be positive."));
+                  "the mesh size and the radius of a ball must be positive."));
+    // 898 tetrahedra at 0.3, and as many more as the volume of one shrinks.
+    const double estimated_cells = 898. * std::pow(0.3 / mesh_size, 3);
+    AssertThrow(estimated_cells <= max_ball_mesh_cells,
+                dealii::ExcMessage(
+                  "the mesh size " + short_number(mesh_size) +
+                  " (relative to the radius) would make a ball of about " +
+                  short_number(estimated_cells) + " tetrahedra, more than " +
+                  short_number(max_ball_mesh_cells) + "; it must be at least " +
+                  short_number(0.3 * std::cbrt(898. / max_ball_mesh_cells)) +
+                  "."));
     AssertThrow(tria.n_cells() == 0,
                 dealii::ExcMessage("make_ball_mesh: the mesh must be empty."));
 #ifndef DEAL_II_GMSH_WITH_API
@@ -95,16 +128,22 @@ namespace estep
     catch (const std::exception &e)
       {
         AssertThrow(false,
-                    dealii::ExcMessage(std::string("make_ball_mesh: gmsh "
-                                                   "failed: ") +
+                    dealii::ExcMessage(gmsh_failed(mesh_size) + ": " +
                                        one_line_message(e)));
+      }
+    catch (const std::string &e)
+      {
+        // The gmsh API throws its last error message as a string.
+        AssertThrow(false,
+                    dealii::ExcMessage(gmsh_failed(mesh_size) + ": " + e));
       }
     catch (...)
       {
-        AssertThrow(false, dealii::ExcMessage("make_ball_mesh: gmsh failed."));
+        AssertThrow(false, dealii::ExcMessage(gmsh_failed(mesh_size) + "."));
       }
     AssertThrow(!cells.empty(),
-                dealii::ExcMessage("make_ball_mesh: gmsh made no tetrahedra."));
+                dealii::ExcMessage(gmsh_failed(mesh_size) +
+                                   ": it made no tetrahedra."));
 
     // Orient every tetrahedron positively (deal.II's reference vertex order).
     for (auto &cell : cells)

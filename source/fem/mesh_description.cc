@@ -142,7 +142,15 @@ namespace estep
         AssertThrow(d.radius > 0. && d.mesh_size > 0.,
                     dealii::ExcMessage(
                       "Mesh: a ball needs a positive radius and mesh size."));
-        make_ball_mesh(tria, d.mesh_size, d.radius);
+        try
+          {
+            make_ball_mesh(tria, d.mesh_size, d.radius);
+          }
+        catch (const std::exception &e)
+          {
+            AssertThrow(false,
+                        dealii::ExcMessage("Mesh: " + one_line_message(e)));
+          }
       }
     else if (d.type == "deal.II" || d.type == "deal.II 24")
       {

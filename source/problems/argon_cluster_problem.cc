@@ -96,10 +96,13 @@ namespace estep
       const std::vector<double> v_si =
         parse_points(prm.get("Initial velocities"), dim, "Initial velocities");
       prm.leave_subsection();
-      if (!(mass > 0.) || !(eps > 0.) || !(sigma > 0.))
-        throw std::runtime_error(
-          "Argon cluster: Particle mass, Epsilon over Boltzmann constant and "
-          "Sigma must be positive.");
+      for (const auto &[entry, value] :
+           {std::pair{"Particle mass", mass},
+            std::pair{"Epsilon over Boltzmann constant", eps},
+            std::pair{"Sigma", sigma}})
+        if (!(value > 0.))
+          throw std::runtime_error(std::string("Argon cluster/") + entry +
+                                   ": must be positive.");
       if (x_nm.size() != v_si.size())
         throw std::runtime_error(
           "Argon cluster: there are " + std::to_string(x_nm.size() / dim) +

@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
 #include <estep/fem/ball_mesh.h>
@@ -10,6 +11,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace estep
 {
@@ -73,9 +76,12 @@ namespace estep
       const double speed = prm.get_double("Speed");
       const double spin  = prm.get_double("Spin");
       prm.leave_subsection();
-      if (!(R > 0.) || !(ratio > 0.) || !(size > 0.))
-        throw std::runtime_error("Colliding balls: the radius, size ratio and "
-                                 "mesh size must be positive.");
+      for (const auto &[entry, value] : {std::pair{"Radius", R},
+                                         std::pair{"Size ratio", ratio},
+                                         std::pair{"Mesh size", size}})
+        if (!(value > 0.))
+          throw std::runtime_error(std::string("Colliding balls/") + entry +
+                                   ": must be positive.");
       prm.enter_subsection("Material");
       const MaterialChoice choice = parse_material_parameters(prm, "Material");
       prm.leave_subsection();
@@ -99,7 +105,15 @@ namespace estep
                        std::array<double, 3>{{0., spin, 0.}}}})
         {
           dealii::Triangulation<3> tria;
-          make_ball_mesh(tria, size, scale * R, centre);
+          try
+            {
+              make_ball_mesh(tria, size, scale * R, centre);
+            }
+          catch (const std::exception &e)
+            {
+              throw std::runtime_error("Colliding balls/Mesh size: " +
+                                       one_line_message(e));
+            }
           auto body =
             std::make_shared<ElasticBody>(tria, material, density, "ball");
           q.push_back(body->reference_configuration());

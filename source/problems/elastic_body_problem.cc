@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/fem/elastic_body.h>
@@ -111,7 +112,18 @@ namespace estep
       prm.enter_subsection("Elastic body");
 
       dealii::Triangulation<3> tria;
-      make_mesh(mesh, tria);
+      try
+        {
+          make_mesh(mesh, tria);
+        }
+      catch (const std::exception &e)
+        {
+          // As a scene names its body's Mesh subsection.
+          std::string message = one_line_message(e);
+          if (message.rfind("Mesh: ", 0) == 0)
+            message.erase(0, 6);
+          throw std::runtime_error("Elastic body/Mesh: " + message);
+        }
       auto body = std::make_unique<ElasticBodyWithHessian>(tria,
                                                            material.material,
                                                            material.density,

@@ -2,6 +2,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/problems/parsed_vector_field.h>
 
 #include <iostream>
@@ -59,7 +60,7 @@ namespace estep
           }
         std::cerr.rdbuf(cerr_buffer);
       }
-    catch (const dealii::ExceptionBase &)
+    catch (const dealii::ExceptionBase &exception)
       {
         std::cerr.rdbuf(cerr_buffer);
         std::string        message;
@@ -67,6 +68,12 @@ namespace estep
         for (std::string line; std::getline(lines, line);)
           if (line.rfind("Message:", 0) == 0)
             message = dealii::Utilities::trim(line.substr(8));
+        // Without a diagnosis (e.g. a wrong number of components), the
+        // exception's own text.
+        if (message.empty())
+          message = one_line_message(exception);
+        while (!message.empty() && message.back() == '.')
+          message.pop_back();
         throw std::runtime_error(
           entry + ": <" + expression + "> cannot be evaluated" +
           (message.empty() ? std::string(".") : ": " + message + "."));

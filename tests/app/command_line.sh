@@ -148,12 +148,19 @@ python3 -c "print('[' * 20000 + ']' * 20000)" > deep.json
 expect 1 "deep.json> nests deeper than 64 levels" -- deep.json
 printf '\xEF\xBB\xBFset Output directory = bom\nsubsection Time integration\n  set End time = 0.5\nend\n' > bom.prm
 expect 0 "completed at t = 0.5" -- bom.prm
-expect 1 "Particle mass, Epsilon over Boltzmann constant and Sigma must be positive" -- run.prm -s "Argon cluster/Particle mass=0"
+expect 1 "Argon cluster/Particle mass: must be positive\.$" -- run.prm -s "Argon cluster/Particle mass=0"
+expect 1 "Argon cluster/Epsilon over Boltzmann constant: must be positive\.$" -- run.prm -s "Argon cluster/Epsilon over Boltzmann constant=0"
 cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=1"
       -s "Time integration/End time=0.1" -s "Postprocessors/List=history, step histogram, progress")
 expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
 expect 1 "initial velocity of the elastic body is not finite" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
-expect 1 "generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
+expect 1 "Elastic body/Mesh: the deal.II generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
+expect 1 "Function expression: <1; 2> cannot be evaluated: The number of components \(3\) is not equal to the number of expressions \(2\)" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=1; 2"
+# Ball meshes: a mesh size that would make too many tetrahedra, or none (gmsh's message).
+expect 1 "Elastic body/Mesh: the mesh size 1e-09 \(relative to the radius\) would make a ball of about 2.4246e\+28 tetrahedra, more than 1e\+08; it must be at least 0.00623563\.$" -- "${cube[@]}" -s "Elastic body/Mesh/Type=ball" -s "Elastic body/Mesh/Mesh size=1e-9"
+balls=("$ESTEP_SOURCE_DIR/parameter_files/ball_collision.prm" -s "Postprocessors/List=history, contact monitor")
+expect 1 "Colliding balls/Mesh size: gmsh could not mesh a ball with the mesh size 100 \(relative to the radius\): " -- "${balls[@]}" -s "Colliding balls/Mesh size=100"
+expect 1 "Colliding balls/Mesh size: must be positive\.$" -- "${balls[@]}" -s "Colliding balls/Mesh size=0"
 expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "Contact/Mode=impenetrability"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
 expect 1 "has no fields to write" -- run.prm -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.1"

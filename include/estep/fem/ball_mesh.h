@@ -11,6 +11,10 @@ namespace dealii
 
 namespace estep
 {
+  /** The most tetrahedra make_ball_mesh() is asked to make (estimated from
+   * the mesh size before gmsh runs). */
+  constexpr double max_ball_mesh_cells = 1e8;
+
   /**
    * An unstructured tetrahedral mesh of the ball of radius @p radius about @p
    * centre, made with the gmsh library that deal.II links (OpenCASCADE sphere,
@@ -20,9 +24,13 @@ namespace estep
    * the reference text's size: 898 tetrahedra and 258 vertices with Debian's
    * gmsh 4.8.4 (0.6: 155 and 64; see doc/contact_system.md).
    *
-   * @p tria must be empty. Throws dealii::ExcMessage if gmsh fails or
-   * produces no tetrahedra; the result passes check_tetrahedral_mesh(). gmsh
-   * is initialised and finalised inside (not thread-safe).
+   * @p tria must be empty. Throws dealii::ExcMessage, in a sentence that
+   * names the mesh size and suits a prefix naming the entry, for a mesh size
+   * or radius that is not positive, a mesh size that would make more than
+   * max_ball_mesh_cells tetrahedra (about 898 (0.3 / mesh_size)^3), or if
+   * gmsh fails (with gmsh's message) or produces no tetrahedra; the result
+   * passes check_tetrahedral_mesh(). gmsh is initialised and finalised
+   * inside (not thread-safe).
    */
   void
   make_ball_mesh(dealii::Triangulation<3, 3> &tria,
