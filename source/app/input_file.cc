@@ -3,6 +3,10 @@
 
 #include <estep/app/input_file.h>
 #include <estep/app/renamed_entries.h>
+#include <estep/base/exception_text.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
 
 #include <cctype>
 #include <filesystem>
@@ -147,6 +151,156 @@ namespace estep
         }
       return deepest;
     }
+
+
+
+    /** @p sections joined by '/', and @p name after them. */
+    std::string
+    entry_path(const std::vector<std::string> &sections,
+               const std::string              &name)
+    {
+      std::string path;
+      for (const std::string &section : sections)
+        path += section + "/";
+      return path + name;
+    }
+
+    /** Whether @p prm declares the entry @p name in the subsection
+     * @p sections (setting it to its value, which changes nothing; only for
+     * the message of an error). */
+    bool
+    is_declared_entry(dealii::ParameterHandler       &prm,
+                      const std::vector<std::string> &sections,
+                      const std::string              &name)
+    {
+      if (!sections.empty() && !prm.subsection_path_exists(sections))
+        return false;
+      for (const std::string &section : sections)
+        prm.enter_subsection(section);
+      bool declared = true;
+      try
+        {
+          prm.set(name, prm.get(name));
+        }
+      catch (...)
+        {
+          declared = false;
+        }
+      for (unsigned int i = 0; i < sections.size(); ++i)
+        prm.leave_subsection();
+      return declared;
+    }
+
+    /**
+     * Set the entries of the JSON object @p node, found at @p sections of
+     * @p prm, as deal.II's reader would, but name each problem by the file
+     * and the entry's full path: an entry or subsection that is not declared
+     * (unless @p skip_undeclared), a value that does not match its pattern, an
+     * array, or an entry of an earlier input layout. An entry is a string or
+     * a number, or an object with a member "value" (the long form that
+     * --print-parameters writes).
+     */
+    void
+    read_json_object(dealii::ParameterHandler          &prm,
+                     const boost::property_tree::ptree &node,
+                     std::vector<std::string>          &sections,
+                     const std::string                 &filename,
+                     const bool                         skip_undeclared)
+    {
+      const std::string where = "File <" + filename + ">: ";
+      for (const auto &[name, child] : node)
+        {
+          const std::string path = entry_path(sections, name);
+          if (name.empty())
+            throw std::runtime_error(
+              where + (sections.empty() ? std::string("the file") : path) +
+              " is a JSON array; a subsection is an object, an entry a "
+              "string or a number.");
+          if (const std::string moved = renamed_entry_message(path);
+              !moved.empty())
+            throw std::runtime_error(where + moved);
+          sections.push_back(name);
+          const bool is_section = prm.subsection_path_exists(sections);
+          if (is_section && child.empty() && !child.data().empty())
+            throw std::runtime_error(where + path +
+                                     " is a subsection: its value must be "
+                                     "an object of entries.");
+          if (is_section)
+            read_json_object(prm, child, sections, filename, skip_undeclared);
+          sections.pop_back();
+          if (is_section)
+            continue;
+
+          const auto long_form = child.get_child_optional("value");
+          if (!child.empty() && child.begin()->first.empty())
+            throw std::runtime_error(where + path +
+                                     " is a JSON array; a subsection is an "
+                                     "object, an entry a string or a number.");
+          if (!child.empty() && !(long_form && long_form->empty()))
+            {
+              if (is_declared_entry(prm, sections, name))
+                throw std::runtime_error(where + path +
+                                         " is an entry: its value must be a "
+                                         "string or a number.");
+              if (skip_undeclared)
+                continue;
+              throw std::runtime_error(where + "there is no subsection <" +
+                                       path +
+                                       "> (see estep --print-parameters).");
+            }
+          const std::string value =
+            child.empty() ? child.data() : long_form->data();
+          for (const std::string &section : sections)
+            prm.enter_subsection(section);
+          std::string error;
+          try
+            {
+              prm.set(name, value);
+            }
+          catch (const dealii::ParameterHandler::ExcEntryUndeclared &)
+            {
+              if (!skip_undeclared)
+                error = "there is no entry <" + path +
+                        "> (see estep --print-parameters).";
+            }
+          catch (const dealii::ExceptionBase &exception)
+            {
+              error = path + ": " + one_line_message(exception);
+            }
+          for (unsigned int i = 0; i < sections.size(); ++i)
+            prm.leave_subsection();
+          if (!error.empty())
+            throw std::runtime_error(where + error);
+        }
+    }
+
+    /** Read the JSON parameter file @p filename into @p prm. */
+    void
+    read_json_file(dealii::ParameterHandler &prm,
+                   const std::string        &filename,
+                   const bool                skip_undeclared)
+    {
+      const std::string text = read_text(filename);
+      if (json_depth(text) > max_json_depth)
+        throw std::runtime_error("The input file <" + filename +
+                                 "> nests deeper than " +
+                                 std::to_string(max_json_depth) +
+                                 " levels: it is not a parameter file.");
+      boost::property_tree::ptree tree;
+      try
+        {
+          std::istringstream in(text);
+          boost::property_tree::read_json(in, tree);
+        }
+      catch (const boost::property_tree::json_parser_error &error)
+        {
+          throw std::runtime_error(
+            "Line <" + std::to_string(error.line()) + "> of file <" + filename +
+            ">: not valid JSON: " + error.message() + ".");
+        }
+      std::vector<std::string> sections;
+      read_json_object(prm, tree, sections, filename, skip_undeclared);
+    }
   } // namespace
 
 
@@ -158,12 +312,7 @@ namespace estep
   {
     if (ends_with(filename, ".json"))
       {
-        if (json_depth(read_text(filename)) > max_json_depth)
-          throw std::runtime_error("The input file <" + filename +
-                                   "> nests deeper than " +
-                                   std::to_string(max_json_depth) +
-                                   " levels: it is not a parameter file.");
-        prm.parse_input(filename, "", skip_undeclared);
+        read_json_file(prm, filename, skip_undeclared);
         return;
       }
     if (ends_with(filename, ".xml"))

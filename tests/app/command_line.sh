@@ -88,6 +88,11 @@ python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summa
 # parameters.json beside parameters.prm, a valid input itself.
 [[ -s run/parameters.json ]] || fail "run/parameters.json missing"
 "$ESTEP" --print-parameters run/parameters.json > /dev/null || fail "run/parameters.json cannot be read back"
+# JSON input: numbers as values; the long form that --print-parameters writes reads back.
+printf '{ "Output directory": "json", "Time integration": { "End time": 0.5 } }\n' > numbers.json
+expect 0 "completed at t = 0.5" -- numbers.json
+"$ESTEP" --print-parameters numbers.json > long.json
+expect 0 "completed at t = 0.5" -- long.json -s "Output directory=long"
 
 # A run into a directory holding another run's field snapshots removes them (and its series).
 mkdir -p stale/fields && touch stale/fields/solution-00007.vtu stale/solution.pvd stale/step_histogram.csv
@@ -115,6 +120,21 @@ printf 'set Output directory = run\nsubsection Time integration\n  set Energy st
 expect 1 "Line <3> of file <unknown.prm>.*Energy stepp" -- unknown.prm
 printf 'set Output directory = run\nsubsection Time integration\n  subsection Energy stepping\n    set Energy step = -1\n  end\nend\n' > pattern.prm
 expect 1 "Line <4> of file <pattern.prm>.*Energy step" -- pattern.prm
+# The same in JSON: the file and the entry's full path.
+printf '{\n  "Output directory": "run",\n  "Time integration": {\n    "Energy stepping": { "Energy stepp": "1" }\n  }\n}\n' > unknown.json
+expect 1 "^estep: error: File <unknown.json>: there is no entry <Time integration/Energy stepping/Energy stepp>" -- unknown.json
+printf '{ "Time integration": { "Energy stepping": { "Energy step": "-1" } } }\n' > pattern.json
+expect 1 "^estep: error: File <pattern.json>: Time integration/Energy stepping/Energy step: The string <-1> does not match the given pattern <\[Double 0\.\.\.MAX_DOUBLE" -- pattern.json
+printf '{ "Time integration": { "Method": "leapfrog" } }\n' > selection.json
+expect 1 "File <selection.json>: Time integration/Method: The string <leapfrog> does not match the given pattern <\[Selection arkode irk" -- selection.json
+printf '{ "Time integration": { "Nope": { "End time": "1" } } }\n' > section.json
+expect 1 "File <section.json>: there is no subsection <Time integration/Nope>" -- section.json
+printf '{ "Time integration": { "End time": [1, 2] } }\n' > array.json
+expect 1 "File <array.json>: Time integration/End time is a JSON array" -- array.json
+printf '{ "Time integration": { "Energy step": "1e-3" } }\n' > renamed.json
+expect 1 "File <renamed.json>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.json
+printf '{ "Time integration": {\n  "End time": 1,\n}\n' > malformed.json
+expect 1 "Line <3> of file <malformed.json>: not valid JSON: expected key string" -- malformed.json
 # Entries of the earlier input layout: the message names where they went.
 printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = 1e-3\nend\n' > renamed.prm
 expect 1 "Line <3> of file <renamed.prm>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.prm

@@ -13,14 +13,17 @@ namespace estep
   /**
    * Read the input file @p filename (.prm, .json or .xml) into @p prm, after
    * the checks that deal.II's readers cannot survive or report clearly: a
-   * .prm file may begin with a UTF-8 byte-order mark (it is dropped); its
-   * `include` lines (resolved as deal.II resolves them, from the working
-   * directory) may neither form a cycle nor nest deeper than 32 files; a JSON
-   * file may not nest deeper than 64 levels; an entry of an earlier version
-   * of the input that has moved is named with its new place. Each violation
-   * is a std::runtime_error naming the file and line. @p skip_undeclared:
-   * ignore entries and subsections @p prm does not declare (a first reading
-   * for a few entries).
+   * .prm or .json file may begin with a UTF-8 byte-order mark (it is
+   * dropped); the `include` lines of a .prm file (resolved as deal.II
+   * resolves them, from the working directory) may neither form a cycle nor
+   * nest deeper than 32 files; a JSON file may not nest deeper than 64
+   * levels; an entry of an earlier version of the input that has moved is
+   * named with its new place. A JSON file is read here rather than by
+   * deal.II, so that an undeclared entry or subsection, or a value that does
+   * not match its pattern, is named by its full path. Each violation is a
+   * std::runtime_error naming the file, and the line or the entry. @p
+   * skip_undeclared: ignore entries and subsections @p prm does not declare
+   * (a first reading for a few entries).
    */
   void
   read_input_file(dealii::ParameterHandler &prm,
