@@ -405,6 +405,7 @@ namespace estep
       settings.end_time                = parameters.end_time;
       settings.output_interval         = parameters.history_interval;
       settings.blowup_factor           = parameters.blowup_factor;
+      settings.energy_drift_warning    = parameters.energy_drift_warning;
       settings.checkpoint_interval     = parameters.checkpoint_interval;
       settings.checkpoint_wall_seconds = parameters.checkpoint_wall_seconds;
       if (parameters.checkpoint_interval > 0. ||
@@ -574,6 +575,8 @@ namespace estep
         if (const std::string line = postprocessor->final_report();
             !line.empty())
           std::cout << "estep: " << line << '\n';
+      for (const std::string &warning : result.warnings)
+        std::cerr << "estep: warning: " << warning << '\n';
       if (!result.message.empty())
         std::cerr << "estep: " << result.message << '\n';
       return exit_code(result);

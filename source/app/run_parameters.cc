@@ -48,6 +48,16 @@ namespace estep
         Double(1., max),
         "A run stops with status unstable when its kinetic energy exceeds "
         "this factor times the initial |T| + |V|.");
+      prm.declare_entry(
+        "Energy drift warning",
+        "0.1",
+        Double(0., max),
+        "A run ends with a warning (on standard error and in summary.json) "
+        "when the energy its integrator conserves, T + V (T + L h for "
+        "energy stepping), differs at an output time (Output/History "
+        "interval) from its initial value by more than this fraction of the "
+        "initial |T| + |V|: it has not conserved energy and its results say "
+        "little.");
       declare_integrator_parameters(prm);
     }
     prm.leave_subsection();
@@ -96,9 +106,10 @@ namespace estep
       throw std::runtime_error("Output directory: must not be empty.");
 
     prm.enter_subsection("Time integration");
-    start_time    = prm.get_double("Start time");
-    end_time      = prm.get_double("End time");
-    blowup_factor = prm.get_double("Blow-up factor");
+    start_time           = prm.get_double("Start time");
+    end_time             = prm.get_double("End time");
+    blowup_factor        = prm.get_double("Blow-up factor");
+    energy_drift_warning = prm.get_double("Energy drift warning");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");

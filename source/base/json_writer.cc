@@ -99,6 +99,17 @@ namespace estep
   }
 
   JsonObject &
+  JsonObject::add(const std::string              &key,
+                  const std::vector<std::string> &values)
+  {
+    std::string text = "[";
+    for (unsigned int i = 0; i < values.size(); ++i)
+      text += (i ? ", " : "") + quoted(values[i]);
+    members.emplace_back(key, text + "]");
+    return *this;
+  }
+
+  JsonObject &
   JsonObject::add(const std::string &key, const JsonObject &object)
   {
     members.emplace_back(key, "\x01" + object.to_string(2, 0));

@@ -66,6 +66,11 @@ namespace estep
 
     JsonObject summary =
       status_summary(run, to_string(result.status), result.message);
+    std::vector<std::string> warnings = integrator.warnings();
+    warnings.insert(warnings.end(),
+                    result.warnings.begin(),
+                    result.warnings.end());
+    summary.add("warnings", warnings);
     summary.add("problem", run.problem.description)
       .add("degrees of freedom", system.n_dofs())
       .add("final time", result.final_time)
@@ -91,7 +96,9 @@ namespace estep
       .add("final kinetic", T1)
       .add("final potential", V1)
       .add("total energy drift",
-           relative_drift(T0 + V0, T1 + V1, std::abs(T0) + std::abs(V0)));
+           relative_drift(T0 + V0, T1 + V1, std::abs(T0) + std::abs(V0)))
+      .add("largest energy drift", result.largest_energy_drift)
+      .add("largest energy drift time", result.largest_energy_drift_time);
     integrator.add_energies_to_summary(energies);
     summary.add("energies", energies);
 

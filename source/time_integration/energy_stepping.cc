@@ -421,6 +421,14 @@ namespace estep
 
 
 
+  std::string
+  EnergyStepping::conserved_energy() const
+  {
+    return "T + L h";
+  }
+
+
+
   namespace
   {
     void

@@ -100,6 +100,14 @@ namespace estep
 
 
 
+  std::string
+  TimeIntegrator::conserved_energy() const
+  {
+    return "T + V";
+  }
+
+
+
   double
   relative_drift(const double a, const double b, const double scale)
   {

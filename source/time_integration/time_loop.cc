@@ -61,6 +61,10 @@ namespace estep
   {
     out.put(blowup_bound);
     out.put(steps_in_place);
+    out.put(energy_scale);
+    out.put(initial_energy);
+    out.put(largest_energy_drift);
+    out.put(largest_energy_drift_time);
   }
 
 
@@ -68,8 +72,12 @@ namespace estep
   void
   TimeLoopState::load(StateReader &in)
   {
-    blowup_bound   = in.get<double>();
-    steps_in_place = in.get<std::uint64_t>();
+    blowup_bound              = in.get<double>();
+    steps_in_place            = in.get<std::uint64_t>();
+    energy_scale              = in.get<double>();
+    initial_energy            = in.get<double>();
+    largest_energy_drift      = in.get<double>();
+    largest_energy_drift_time = in.get<double>();
   }
 
 
@@ -170,6 +178,19 @@ namespace estep
         while (!outputs.done() && outputs.next() <= t_reached)
           {
             const Snapshot snapshot = integrator.dense_output(outputs.next());
+            if (state.energy_scale > 0.)
+              {
+                const double drift =
+                  std::abs(snapshot.kinetic_energy +
+                           snapshot.terraced_potential_energy -
+                           state.initial_energy) /
+                  state.energy_scale;
+                if (!(drift <= state.largest_energy_drift))
+                  {
+                    state.largest_energy_drift      = drift;
+                    state.largest_energy_drift_time = snapshot.t;
+                  }
+              }
             for (RunObserver *observer : observers)
               observer->observe(snapshot);
             outputs.advance();
@@ -257,6 +278,24 @@ namespace estep
           result.status  = RunStatus::failed;
           result.message = failure.what();
         }
+      result.largest_energy_drift      = state.largest_energy_drift;
+      result.largest_energy_drift_time = state.largest_energy_drift_time;
+      if (result.status != RunStatus::unstable &&
+          !(state.largest_energy_drift <= settings.energy_drift_warning))
+        {
+          std::ostringstream message;
+          message << "Time integration/Energy drift warning: the energy "
+                  << integrator.conserved_energy()
+                  << " drifted from its initial value by "
+                  << state.largest_energy_drift
+                  << " times the initial energy scale |T| + |V| = "
+                  << state.energy_scale
+                  << " (at t = " << state.largest_energy_drift_time
+                  << "), more than the " << settings.energy_drift_warning
+                  << " allowed: the run has not conserved energy and its "
+                     "results say little; take a smaller step.";
+          result.warnings.push_back(message.str());
+        }
       result.final_time   = integrator.time();
       result.wall_seconds = std::chrono::duration<double>(
                               std::chrono::steady_clock::now() - wall_start)
@@ -276,7 +315,11 @@ namespace estep
     TimeLoopState           state;
     const double            T0 = kinetic_energy(system, integrator.velocity());
     const double            V0 = system.energy(integrator.position());
-    state.blowup_bound = settings.blowup_factor * (std::abs(T0) + std::abs(V0));
+    state.energy_scale         = std::abs(T0) + std::abs(V0);
+    state.blowup_bound         = settings.blowup_factor * state.energy_scale;
+    const Snapshot start       = integrator.dense_output(integrator.time());
+    state.initial_energy =
+      start.kinetic_energy + start.terraced_potential_energy;
     return continue_time_loop(integrator, settings, observers, state, false);
   }
 

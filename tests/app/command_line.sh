@@ -206,6 +206,18 @@ expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisio
 
 # An energy step above the system's energy scale: a warning that says the results mean little.
 expect 0 "warning: Time integration/Energy stepping/Energy step: h = 100 exceeds the initial energy scale" -- run.prm -s "Time integration/Energy stepping/Energy step=100" -s "Output directory=coarse"
+grep -q '"warnings": \["Time integration/Energy stepping/Energy step: h = 100' coarse/summary.json || fail "summary.json lacks the coarse energy step's warning"
+
+# A run that conserves nothing but stays below the blow-up factor (velocity Verlet on argon far
+# above its stable step): it completes with a warning naming the drift and the rule, also in
+# summary.json. The reference Verlet run has none.
+verlet=("$ESTEP_SOURCE_DIR/parameter_files/argon_cluster_verlet.prm" -s "Postprocessors/List=history")
+expect 0 "warning: Time integration/Energy drift warning: the energy T \+ V drifted from its initial value by [0-9.]+ times the initial energy scale \|T\| \+ \|V\| = 13.17.* \(at t = [0-9.]+\), more than the 0.1 allowed" -- "${verlet[@]}" -s "Time integration/Explicit Newmark/Time step=0.2" -s "Time integration/End time=2" -s "Output directory=drift"
+grep -q '"status": "completed"' drift/summary.json || fail "a drifting run does not say completed"
+grep -q '"warnings": \["Time integration/Energy drift warning: the energy T + V drifted' drift/summary.json || fail "summary.json lacks the drift warning"
+expect 0 "completed at t = 463.05" -- "${verlet[@]}" -s "Output directory=verlet"
+if grep -q "warning" err.txt; then fail "the reference Verlet run warns: $(cat err.txt)"; fi
+grep -q '"warnings": \[\]' verlet/summary.json || fail "summary.json of the reference Verlet run has warnings"
 
 # An output that cannot be written (history.csv on a full device): status failed, exit code 4,
 # the file named; the summary written first says running, then failed.

@@ -33,6 +33,7 @@ namespace estep
     double      start_time;
     double      end_time;
     double      blowup_factor;
+    double      energy_drift_warning;
     double      history_interval;
     /** Checkpoints every this much simulated time (0: none) and every this
      * many seconds of wall time (0: none). */

@@ -10,8 +10,8 @@ namespace estep
 {
   /**
    * A small JSON object builder for summary.json: keys keep their insertion
-   * order, values are numbers, strings, booleans, number arrays or nested
-   * objects.
+   * order, values are numbers, strings, booleans, arrays of numbers or of
+   * strings, or nested objects.
    */
   class JsonObject
   {
@@ -32,6 +32,8 @@ namespace estep
     add(const std::string &key, const bool value);
     JsonObject &
     add(const std::string &key, const std::vector<double> &values);
+    JsonObject &
+    add(const std::string &key, const std::vector<std::string> &values);
     JsonObject &
     add(const std::string &key, const JsonObject &object);
 

@@ -31,9 +31,11 @@ namespace estep
                  const std::string &message);
 
   /**
-   * The summary of a run that ended as @p result says: status_summary() and
+   * The summary of a run that ended as @p result says: status_summary(), the
+   * warnings (the integrator's at the start, the time loop's at the end),
    * the problem's description, the counts of work and steps, the energies
-   * and momenta at the start and the end with their drifts, the integrator's
+   * and momenta at the start and the end with their drifts (and the largest
+   * drift of the conserved energy over the output times), the integrator's
    * own figures and every postprocessor's.
    */
   JsonObject

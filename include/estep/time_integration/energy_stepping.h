@@ -105,6 +105,10 @@ namespace estep
     void
     load_state(StateReader &in) override;
 
+    /** The terraced energy, "T + L h". */
+    std::string
+    conserved_energy() const override;
+
     /** The current terrace index L ((L + c) h <= V < (L + 1 + c) h up to the
      * root tolerance). */
     long long

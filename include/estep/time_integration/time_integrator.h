@@ -24,7 +24,8 @@ namespace estep
     double kinetic_energy;
     double potential_energy;
     /** The potential the integrator conserves energy with: L h for
-     * energy-stepping, V for the others. */
+     * energy-stepping, V for the others (see
+     * TimeIntegrator::conserved_energy()). */
     double terraced_potential_energy;
   };
 
@@ -102,6 +103,11 @@ namespace estep
     virtual void
     load_state(StateReader &in);
     /** @} */
+
+    /** The energy the integrator conserves, as a formula for messages: "T +
+     * V" by default, the time loop checks its drift. */
+    virtual std::string
+    conserved_energy() const;
 
     double
     time() const

@@ -64,6 +64,13 @@ namespace estep
     double blowup_bound = 0.;
     /** Steps in a row that left the time where it was. */
     std::uint64_t steps_in_place = 0;
+    /** The initial |T0| + |V0| and conserved energy (TimeIntegrator::
+     * conserved_energy()), and the largest drift of that energy over the
+     * output times so far, relative to |T0| + |V0|, with its time. */
+    double energy_scale              = 0.;
+    double initial_energy            = 0.;
+    double largest_energy_drift      = 0.;
+    double largest_energy_drift_time = 0.;
 
     void
     save(StateWriter &out) const;
@@ -84,6 +91,13 @@ namespace estep
      * times the initial energy scale |T0| + |V0| (checked after every step).
      */
     double blowup_factor = 1e3;
+    /**
+     * The run ends with a warning (TimeLoopResult::warnings) when the energy
+     * its integrator conserves (TimeIntegrator::conserved_energy()) differs
+     * at an output time from its initial value by more than this fraction of
+     * the initial energy scale |T0| + |V0|.
+     */
+    double energy_drift_warning = 0.1;
 
     /**
      * Checkpoints: write_checkpoint is called (if set) after the first step
@@ -107,6 +121,13 @@ namespace estep
     int    signal       = 0;
     double final_time   = 0.;
     double wall_seconds = 0.;
+    /** The largest |E(t) - E(t0)| over the output times, E the conserved
+     * energy, relative to the initial |T0| + |V0| (0 if that is 0), and the
+     * output time where it was reached. */
+    double largest_energy_drift      = 0.;
+    double largest_energy_drift_time = 0.;
+    /** Warnings about the run as it went, one sentence each. */
+    std::vector<std::string> warnings;
   };
 
   /**
@@ -120,7 +141,9 @@ namespace estep
    * The one time loop of estep: step the initialised @p integrator to the end
    * time, hand the exact state at each output time to the observers, and stop
    * with status "unstable" (and a message) if the state becomes non-finite or
-   * explodes.
+   * explodes. A run that does not end unstable but whose conserved energy
+   * drifted at an output time by more than TimeLoopSettings::
+   * energy_drift_warning times the initial |T0| + |V0| ends with a warning.
    */
   TimeLoopResult
   run_time_loop(TimeIntegrator                   &integrator,
