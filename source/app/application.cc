@@ -61,7 +61,8 @@ namespace estep
       "the directory named by 'set Output directory'.\n"
       "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
       "stalled (its event search could not advance at round-off), 4 an output could\n"
-      "not be written (e.g. a full disk), 128 + the signal's number when SIGINT or\n"
+      "not be written (e.g. a full disk), 5 bodies passed into each other (e.g. a\n"
+      "penalty too soft to keep them apart), 128 + the signal's number when SIGINT or\n"
       "SIGTERM ended the run (130, 143; summary.json says interrupted).\n";
 
     /** The usage and the registered plugins, by extension point. */
@@ -473,6 +474,8 @@ namespace estep
             return exit_failed;
           case RunStatus::interrupted:
             return 128 + result.signal;
+          case RunStatus::penetrated:
+            return exit_penetrated;
         }
       return exit_failed;
     }

@@ -6,13 +6,16 @@
 #include <estep/contact/first_contact.h>
 #include <estep/contact/penalty_contact.h>
 #include <estep/contact/penalty_flight.h>
+#include <estep/contact/point_in_surface.h>
 #include <estep/contact/triangle_intersection.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -268,14 +271,29 @@ namespace estep
                     std::to_string(b) + " does not follow its DoFHandler");
               point_of_vertex[cell->vertex_index(v)] = point;
             }
+        std::set<unsigned int> points;
+        double                 longest = 0.;
+        body_triangles.emplace_back();
         for (const auto &t : contact::boundary_triangles(tria))
           {
             contact::TriangleIndices global;
             for (unsigned int k = 0; k < 3; ++k)
-              global[k] = offsets[b] + point_of_vertex[t[k]];
+              {
+                global[k] = offsets[b] + point_of_vertex[t[k]];
+                points.insert(global[k]);
+                const contact::Point3 x0 =
+                  contact::point_at(X.data(), point_of_vertex[t[k]]);
+                const contact::Point3 x1 =
+                  contact::point_at(X.data(), point_of_vertex[t[(k + 1) % 3]]);
+                const contact::Point3 edge = contact::minus(x1, x0);
+                longest = std::max(longest, contact::dot(edge, edge));
+              }
+            body_triangles.back().push_back(triangles.size());
             triangles.push_back(global);
             triangle_body.push_back(b);
           }
+        boundary_points.emplace_back(points.begin(), points.end());
+        longest_boundary_edge.push_back(std::sqrt(longest));
       }
     const unsigned int n_body_triangles = triangles.size();
     for (unsigned int s = 0; s < surfaces.size(); ++s)
@@ -688,5 +706,79 @@ namespace estep
   ContactSystem::system_motion(const Vector &q, const Vector &v) const
   {
     return rigid_body_motion(inv_mass, q, v, 0, n_body_points());
+  }
+
+
+
+  double
+  ContactSystem::penetration_limit(const unsigned int b1,
+                                   const unsigned int b2) const
+  {
+    return std::max(longest_boundary_edge.at(b1), longest_boundary_edge.at(b2));
+  }
+
+
+
+  std::optional<ContactSystem::Penetration>
+  ContactSystem::deep_penetration(const Vector &q) const
+  {
+    const double *x = q.data();
+    for (unsigned int entered = 0; entered < bodies.size(); ++entered)
+      {
+        // The bounding box of the body that might be entered.
+        contact::Point3 lower, upper;
+        lower.fill(std::numeric_limits<double>::infinity());
+        upper.fill(-std::numeric_limits<double>::infinity());
+        for (const unsigned int i : boundary_points[entered])
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              lower[c] = std::min(lower[c], x[3 * i + c]);
+              upper[c] = std::max(upper[c], x[3 * i + c]);
+            }
+        for (unsigned int entering = 0; entering < bodies.size(); ++entering)
+          {
+            if (entering == entered)
+              continue;
+            const double limit = penetration_limit(entered, entering);
+            for (const unsigned int i : boundary_points[entering])
+              {
+                const contact::Point3 p      = contact::point_at(x, i);
+                bool                  in_box = true;
+                for (unsigned int c = 0; c < 3; ++c)
+                  in_box = in_box && p[c] >= lower[c] + limit &&
+                           p[c] <= upper[c] - limit;
+                if (!in_box)
+                  continue;
+                const contact::PointAndSurface where = contact::locate_point(
+                  p, x, triangles, body_triangles[entered], limit);
+                if (where.distance > limit && where.winding_number > 0.5)
+                  return Penetration{
+                    entering, entered, i, where.distance, limit};
+              }
+          }
+      }
+    return std::nullopt;
+  }
+
+
+
+  std::string
+  ContactSystem::penetration(const Vector &q) const
+  {
+    const auto found = deep_penetration(q);
+    if (!found)
+      return "";
+    std::ostringstream text;
+    text << "a boundary point of body " << found->body + 1 << " (point "
+         << found->point - offsets[found->body] << ") lies " << found->depth
+         << " inside body " << found->other_body + 1
+         << ", deeper than the longest boundary edge " << found->limit
+         << " of the two meshes";
+    if (contact_parameters.mode == ContactParameters::Mode::penalty)
+      text << "; the penalty (Contact/Penalty parameter = "
+           << contact_parameters.penalty_parameter
+           << ", smaller is stiffer) is too soft to keep them apart";
+    text << ".";
+    return text.str();
   }
 } // namespace estep

@@ -215,6 +215,15 @@ namespace estep
 
 
 
+  std::string
+  SupportedSystem::penetration(const Vector &q) const
+  {
+    scatter(q, scratch_q);
+    return base_system->penetration(scratch_q);
+  }
+
+
+
   Vector
   SupportedSystem::expand(const Vector &q_free) const
   {

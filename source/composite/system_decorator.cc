@@ -125,4 +125,12 @@ namespace estep
   {
     return base_system->observables(q, v);
   }
+
+
+
+  std::string
+  SystemDecorator::penetration(const Vector &q) const
+  {
+    return base_system->penetration(q);
+  }
 } // namespace estep

@@ -45,6 +45,12 @@ namespace estep
     return {};
   }
 
+  std::string
+  MechanicalSystem::penetration(const Vector &) const
+  {
+    return "";
+  }
+
   Momenta
   compute_momenta(const MechanicalSystem &system,
                   const Vector           &q,

@@ -30,6 +30,8 @@ namespace estep
           return "failed";
         case RunStatus::interrupted:
           return "interrupted";
+        case RunStatus::penetrated:
+          return "penetrated";
       }
     return "unknown";
   }
@@ -44,6 +46,14 @@ namespace estep
     /** Steps in a row that leave the time where it is before the run is
      * declared stalled (events at one instant are legitimate, a few). */
     constexpr unsigned int max_steps_in_place = 10000;
+
+    /** Thrown when bodies have passed into each other; the run ends with
+     * status penetrated. */
+    class PenetratedRun : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
   } // namespace
 
 
@@ -244,6 +254,15 @@ namespace estep
                     << " times the initial energy scale (Blow-up factor).";
                   throw UnstableRun(message.str());
                 }
+              if (const std::string penetration =
+                    system.penetration(integrator.position());
+                  !penetration.empty())
+                {
+                  std::ostringstream message;
+                  message << "The bodies passed into each other at t = "
+                          << integrator.time() << ": " << penetration;
+                  throw PenetratedRun(message.str());
+                }
               for (RunObserver *observer : observers)
                 observer->after_step(integrator);
               emit_outputs_until(integrator.time());
@@ -272,6 +291,11 @@ namespace estep
         {
           result.status  = RunStatus::stalled;
           result.message = stalled.what();
+        }
+      catch (const PenetratedRun &penetrated)
+        {
+          result.status  = RunStatus::penetrated;
+          result.message = penetrated.what();
         }
       catch (const OutputFailed &failure)
         {

@@ -219,6 +219,12 @@ expect 0 "completed at t = 463.05" -- "${verlet[@]}" -s "Output directory=verlet
 if grep -q "warning" err.txt; then fail "the reference Verlet run warns: $(cat err.txt)"; fi
 grep -q '"warnings": \[\]' verlet/summary.json || fail "summary.json of the reference Verlet run has warnings"
 
+# A penalty that lets the bodies pass (eps is a compliance: 1e300 makes the contact energy
+# vanish): the run stops when a body is deeper than an element inside the other, status
+# penetrated, exit code 5.
+expect 5 "The bodies passed into each other at t = 0.2[0-9]*: a boundary point of body 2 \(point [0-9]+\) lies 0.5[0-9]* inside body 1, deeper than the longest boundary edge 0.508[0-9]* of the two meshes; the penalty \(Contact/Penalty parameter = 1e\+300, smaller is stiffer\) is too soft to keep them apart\.$" -- "${balls[@]}" -s "Contact/Penalty parameter=1e300" -s "Time integration/End time=0.3" -s "Output directory=passed"
+grep -q '"status": "penetrated"' passed/summary.json || fail "summary.json of a penetrated run lacks status penetrated"
+
 # An output that cannot be written (history.csv on a full device): status failed, exit code 4,
 # the file named; the summary written first says running, then failed.
 mkdir -p full && ln -sf /dev/full full/history.csv

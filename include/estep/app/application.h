@@ -17,7 +17,10 @@ namespace estep
     exit_stalled = 3,
     /** An output could not be written (e.g. a full disk); summary.json says
      * so where it still can be written. */
-    exit_failed = 4
+    exit_failed = 4,
+    /** Bodies passed into each other (e.g. through a penalty too soft to
+     * keep them apart); summary.json says so. */
+    exit_penetrated = 5
     // A run ended by SIGINT or SIGTERM exits with 128 + the signal's number.
   };
 

@@ -9,6 +9,7 @@
 #include <estep/systems/rigid_body_motion.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -235,6 +236,47 @@ namespace estep
     std::vector<std::pair<unsigned int, unsigned int>>
     intersecting_bodies(const Vector &q) const;
 
+    /** A boundary point of one body found deep inside another. */
+    struct Penetration
+    {
+      /** The body the point belongs to and the body it is inside. */
+      unsigned int body, other_body;
+      /** The point's global number. */
+      unsigned int point;
+      /** Its distance from the other body's boundary, and the length it
+       * exceeds (penetration_limit() of the two bodies). */
+      double depth, limit;
+    };
+
+    /**
+     * The longest boundary edge of bodies @p b1 and @p b2 in their reference
+     * configurations: the depth beyond which deep_penetration() reports a
+     * point of one inside the other.
+     */
+    double
+    penetration_limit(const unsigned int b1, const unsigned int b2) const;
+
+    /**
+     * A boundary point of one body that lies inside another body (the
+     * winding number of the other's boundary about it exceeds 1/2) farther
+     * from the other's boundary than penetration_limit(): the bodies have
+     * passed into each other by more than an element, which no contact mode
+     * lets them do when it works (a penalty keeps the penetration far below
+     * the mesh size, the exact mode at zero). The first such point found, if
+     * any. Static surfaces have no inside and are not checked; neither is a
+     * body against itself. Only points inside the other body's bounding box
+     * shrunk by the limit are located (distance, then winding number), so
+     * the check costs a box test per boundary point as long as no body
+     * reaches that deep into another's box.
+     */
+    std::optional<Penetration>
+    deep_penetration(const Vector &q) const;
+
+    /** deep_penetration() in one sentence, naming the bodies, the depth and,
+     * in penalty mode, the penalty parameter; empty if there is none. */
+    std::string
+    penetration(const Vector &q) const override;
+
     /** Rigid motion of body @p b at (q, v). */
     RigidBodyMotion
     body_motion(const Vector &q, const Vector &v, const unsigned int b) const;
@@ -257,7 +299,12 @@ namespace estep
     std::vector<unsigned int>                triangle_body;
     std::vector<unsigned int>                exclusion_groups;
     std::unique_ptr<contact::PenaltyContact> penalty;
-    mutable std::vector<Vector>              scratch_q, scratch_g;
+    /** Per body: its boundary points (global numbers), its boundary
+     * triangles (indices into triangles) and its longest boundary edge in
+     * the reference configuration. */
+    std::vector<std::vector<unsigned int>> boundary_points, body_triangles;
+    std::vector<double>                    longest_boundary_edge;
+    mutable std::vector<Vector>            scratch_q, scratch_g;
   };
 } // namespace estep
 

@@ -99,6 +99,10 @@ namespace estep
     std::vector<double>
     observables(const Vector &q, const Vector &v) const override;
 
+    /** The base's penetration() of the expanded configuration. */
+    std::string
+    penetration(const Vector &q) const override;
+
     /** The full configuration of the base: @p q_free (n_dofs() entries) on
      * the free points, the positions given to the constructor on the fixed
      * ones. */

@@ -65,6 +65,9 @@ namespace estep
     std::vector<double>
     observables(const Vector &q, const Vector &v) const override;
 
+    std::string
+    penetration(const Vector &q) const override;
+
   protected:
     std::shared_ptr<const MechanicalSystem> base_system;
   };

@@ -127,6 +127,16 @@ namespace estep
     /** Values of the quantities named by observable_names() at state (q, v). */
     virtual std::vector<double>
     observables(const Vector &q, const Vector &v) const;
+
+    /**
+     * Whether bodies of the system have passed into each other at @p q
+     * further than the system can represent (e.g. through a penalty too soft
+     * to keep them apart): a sentence saying which and how deep, or empty.
+     * The time loop asks after every step and ends a run with status
+     * penetrated. The default: empty (no bodies).
+     */
+    virtual std::string
+    penetration(const Vector &q) const;
   };
 
   /** Linear and angular momentum of a state. In 2D only the z components are

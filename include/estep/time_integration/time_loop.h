@@ -39,11 +39,13 @@ namespace estep
     /** An output could not be written (e.g. a full disk). */
     failed,
     /** Stopped on request (a signal such as SIGINT or SIGTERM). */
-    interrupted
+    interrupted,
+    /** Bodies passed into each other (MechanicalSystem::penetration()). */
+    penetrated
   };
 
   /** Text of a status for output ("completed", "unstable", "stalled",
-   * "failed", "interrupted"). */
+   * "failed", "interrupted", "penetrated"). */
   std::string
   to_string(const RunStatus status);
 
@@ -141,9 +143,11 @@ namespace estep
    * The one time loop of estep: step the initialised @p integrator to the end
    * time, hand the exact state at each output time to the observers, and stop
    * with status "unstable" (and a message) if the state becomes non-finite or
-   * explodes. A run that does not end unstable but whose conserved energy
-   * drifted at an output time by more than TimeLoopSettings::
-   * energy_drift_warning times the initial |T0| + |V0| ends with a warning.
+   * explodes, with status "penetrated" if the system reports bodies passed
+   * into each other (MechanicalSystem::penetration(), after every step). A run
+   * that does not end unstable but whose conserved energy drifted at an output
+   * time by more than TimeLoopSettings:: energy_drift_warning times the initial
+   * |T0| + |V0| ends with a warning.
    */
   TimeLoopResult
   run_time_loop(TimeIntegrator                   &integrator,
