@@ -781,4 +781,16 @@ namespace estep
     text << ".";
     return text.str();
   }
+
+
+
+  double
+  ContactSystem::penalty_energy_scale() const
+  {
+    if (contact_parameters.mode != ContactParameters::Mode::penalty)
+      return std::numeric_limits<double>::infinity();
+    const double longest = *std::max_element(longest_boundary_edge.begin(),
+                                             longest_boundary_edge.end());
+    return longest * longest / (2. * contact_parameters.penalty_parameter);
+  }
 } // namespace estep

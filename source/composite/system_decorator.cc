@@ -133,4 +133,12 @@ namespace estep
   {
     return base_system->penetration(q);
   }
+
+
+
+  double
+  SystemDecorator::penalty_energy_scale() const
+  {
+    return base_system->penalty_energy_scale();
+  }
 } // namespace estep

@@ -1,5 +1,6 @@
 #include <estep/systems/mechanical_system.h>
 
+#include <limits>
 #include <stdexcept>
 
 namespace estep
@@ -49,6 +50,12 @@ namespace estep
   MechanicalSystem::penetration(const Vector &) const
   {
     return "";
+  }
+
+  double
+  MechanicalSystem::penalty_energy_scale() const
+  {
+    return std::numeric_limits<double>::infinity();
   }
 
   Momenta

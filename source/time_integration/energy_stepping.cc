@@ -398,6 +398,17 @@ namespace estep
                 "the results say little.";
         found.push_back(text.str());
       }
+    if (const double penalty = system.penalty_energy_scale(); h > penalty)
+      {
+        std::ostringstream text;
+        text << "Time integration/Energy stepping/Energy step: h = " << h
+             << " exceeds the energy " << penalty
+             << " that the contact penalty stores in an intersection one "
+                "boundary edge deep (Contact/Penalty parameter): a flight "
+                "may carry bodies through each other within one step, "
+                "unseen; take a smaller penalty parameter or energy step.";
+        found.push_back(text.str());
+      }
     // Mostly reflections: the motion keeps bouncing off the level above
     // instead of climbing and descending through the terraces, and where the
     // levels lie decides it (doc/spinning_cube.md).

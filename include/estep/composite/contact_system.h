@@ -277,6 +277,11 @@ namespace estep
     std::string
     penetration(const Vector &q) const override;
 
+    /** In penalty mode l^2 / (2 eps), l the longest boundary edge of all
+     * bodies in their reference configurations; +infinity otherwise. */
+    double
+    penalty_energy_scale() const override;
+
     /** Rigid motion of body @p b at (q, v). */
     RigidBodyMotion
     body_motion(const Vector &q, const Vector &v, const unsigned int b) const;

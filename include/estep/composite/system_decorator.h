@@ -68,6 +68,9 @@ namespace estep
     std::string
     penetration(const Vector &q) const override;
 
+    double
+    penalty_energy_scale() const override;
+
   protected:
     std::shared_ptr<const MechanicalSystem> base_system;
   };

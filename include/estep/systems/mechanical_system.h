@@ -137,6 +137,16 @@ namespace estep
      */
     virtual std::string
     penetration(const Vector &q) const;
+
+    /**
+     * The energy a contact penalty of the system stores in an intersection
+     * one element deep (ContactSystem in penalty mode: l^2 / (2 eps), l the
+     * longest boundary edge); an integrator that only sees energy changes of
+     * a given size (energy-stepping) cannot stop bodies with a smaller one.
+     * The default: +infinity (no penalty).
+     */
+    virtual double
+    penalty_energy_scale() const;
   };
 
   /** Linear and angular momentum of a state. In 2D only the z components are

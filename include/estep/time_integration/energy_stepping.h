@@ -85,11 +85,13 @@ namespace estep
     add_energies_to_summary(JsonObject &energies) const override;
 
     /**
-     * A warning when h exceeds the initial |T| + |V|, and one when the run so
-     * far has mostly reflected: of at least
-     * min_crossings_for_reflection_warning level crossings, more than the
-     * share reflection_warning_share were reflections. The result then
-     * depends on the terrace offset (doc/spinning_cube.md).
+     * A warning when h exceeds the initial |T| + |V|, one when it exceeds the
+     * system's penalty_energy_scale() (a penalty too soft for the terraces to
+     * see an element-deep intersection), and one when the run so far has
+     * mostly reflected: of at least min_crossings_for_reflection_warning
+     * level crossings, more than the share reflection_warning_share were
+     * reflections. The result then depends on the terrace offset
+     * (doc/spinning_cube.md).
      */
     std::vector<std::string>
     warnings() const override;
