@@ -21,6 +21,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -494,7 +495,8 @@ namespace estep
       check_initial_state(problem);
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
-      const auto postprocessors =
+      const std::vector<std::string> warnings_at_start = integrator->warnings();
+      const auto                     postprocessors =
         create_run_postprocessors(prm, problem, *integrator, parameters);
       const RunRecord record{problem,
                              *integrator,
@@ -578,6 +580,13 @@ namespace estep
         if (const std::string line = postprocessor->final_report();
             !line.empty())
           std::cout << "estep: " << line << '\n';
+      // The integrator's warnings that arose during the run (e.g. mostly
+      // reflections), then the time loop's.
+      for (const std::string &warning : integrator->warnings())
+        if (std::find(warnings_at_start.begin(),
+                      warnings_at_start.end(),
+                      warning) == warnings_at_start.end())
+          std::cerr << "estep: warning: " << warning << '\n';
       for (const std::string &warning : result.warnings)
         std::cerr << "estep: warning: " << warning << '\n';
       if (!result.message.empty())
