@@ -7,10 +7,25 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
 {
+  namespace
+  {
+    /** @p x with six significant digits, for messages. */
+    std::string
+    number(const double x)
+    {
+      std::ostringstream text;
+      text << x;
+      return text.str();
+    }
+  } // namespace
+
+
+
   void
   RunParameters::declare_parameters(dealii::ParameterHandler &prm)
   {
@@ -121,7 +136,7 @@ namespace estep
     if (!(end_time > start_time))
       throw std::runtime_error(
         "Time integration/End time: must be larger than the start time (" +
-        std::to_string(start_time) + ").");
+        number(start_time) + ").");
     // Times are resolved to about a million units of round-off of the
     // largest time of the run: a shorter span or output interval could not
     // be stepped through in floating point.
@@ -132,16 +147,16 @@ namespace estep
     if (end_time - start_time < time_resolution)
       throw std::runtime_error(
         "Time integration/End time: the time span " +
-        std::to_string(end_time - start_time) +
+        number(end_time - start_time) +
         " is below the resolution of floating-point times this far from 0 (" +
-        std::to_string(time_resolution) + "); shift the start time to 0.");
+        number(time_resolution) + "); shift the start time to 0.");
     const auto check_interval = [&](const char  *entry,
                                     const double interval,
                                     const double max_outputs) {
       if (interval > 0. && interval < time_resolution)
         throw std::runtime_error(std::string("Output/") + entry +
                                  ": below the resolution of the run's times (" +
-                                 std::to_string(time_resolution) + ").");
+                                 number(time_resolution) + ").");
       if (interval > 0. && (end_time - start_time) / interval > max_outputs)
         throw std::runtime_error(
           std::string("Output/") + entry + ": would write more than " +

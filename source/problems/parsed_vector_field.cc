@@ -5,6 +5,7 @@
 #include <estep/base/exception_text.h>
 #include <estep/problems/parsed_vector_field.h>
 
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -78,6 +79,17 @@ namespace estep
           entry + ": <" + expression + "> cannot be evaluated" +
           (message.empty() ? std::string(".") : ": " + message + "."));
       }
+    for (unsigned int i = 0; i < field.size(); ++i)
+      if (!std::isfinite(field[i]))
+        {
+          std::ostringstream point;
+          point << points[3 * (i / 3)] << ", " << points[3 * (i / 3) + 1]
+                << ", " << points[3 * (i / 3) + 2];
+          throw std::runtime_error(
+            entry + ": <" + expression + "> is " + std::to_string(field[i]) +
+            " at the point (" + point.str() + ") (component " +
+            std::to_string(i % 3) + ").");
+        }
     return field;
   }
 } // namespace estep

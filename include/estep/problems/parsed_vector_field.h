@@ -14,7 +14,8 @@ namespace estep
    * separated by ';', @p variables names the coordinates ("x,y,z"), and @p
    * constants is a list "name=value, ...". Returns the values point-major.
    * Throws std::runtime_error naming @p entry (the input's entry) when the
-   * constants or the expression cannot be read, in one line.
+   * constants or the expression cannot be read, or when a value is not
+   * finite (naming the point and the component), in one line.
    */
   Vector
   evaluate_vector_field(const std::string &entry,
