@@ -47,7 +47,7 @@ kill_after_checkpoint() {
 
 # The cube by energy-stepping with every postprocessor that keeps state, killed at 20 random
 # instants of its run.
-cube=("$files/quick_start.prm" --set "Output directory=run" --set "Time integration/End time=3"
+cube=("$files/quick_start.prm" --set "Output directory=run" --set "Time integration/End time=2"
       --set "Output/Checkpoint interval=0.25"
       --set "Postprocessors/List=history, step histogram, progress, field output, h1 norm"
       --set "Postprocessors/Field output/Interval=0.5")
@@ -137,9 +137,9 @@ rm -rf run
 "$ESTEP" "${cube[@]}" --resume > out.txt 2>&1 || fail "--resume without a checkpoint"
 grep -q "starts from the beginning" out.txt || fail "--resume without a checkpoint says nothing"
 same_run cube_reference run "--resume without a checkpoint"
-"$ESTEP" "${cube[@]}" --set "Time integration/End time=3.5" --resume > /dev/null 2>&1 \
+"$ESTEP" "${cube[@]}" --set "Time integration/End time=2.5" --resume > /dev/null 2>&1 \
   || fail "continuing a completed run"
-tail -1 run/history.csv | grep -q "^3.5," || fail "continuing a completed run: no row at t = 3.5"
+tail -1 run/history.csv | grep -q "^2.5," || fail "continuing a completed run: no row at t = 2.5"
 "$ESTEP" "${cube[@]}" --set "Time integration/Energy stepping/Energy step=2e-5" --resume \
   > out.txt 2> err.txt
 rc=$?
