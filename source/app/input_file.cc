@@ -11,6 +11,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -323,6 +324,18 @@ namespace estep
     std::vector<std::string> chain, sections;
     scan_prm_file(filename, chain, sections);
     std::istringstream text(read_text(filename));
-    prm.parse_input(text, filename, "", skip_undeclared);
+    try
+      {
+        prm.parse_input(text, filename, "", skip_undeclared);
+      }
+    catch (const dealii::ParameterHandler::ExcNoSubsection &exception)
+      {
+        // deal.II 9.4 writes "Line <n> of file <name: There is no such
+        // subsection ...", without the '>'.
+        throw std::runtime_error(
+          std::regex_replace(one_line_message(exception),
+                             std::regex("of file <([^>]*): There is no such"),
+                             "of file <$1>: There is no such"));
+      }
   }
 } // namespace estep
