@@ -200,4 +200,23 @@ namespace estep
         dealii::Tensor<1, 3>({d.shift[0], d.shift[1], d.shift[2]}), tria);
     check_tetrahedral_mesh(tria);
   }
+
+
+  void
+  make_mesh(const MeshDescription       &description,
+            dealii::Triangulation<3, 3> &tria,
+            const std::string           &section)
+  {
+    try
+      {
+        make_mesh(description, tria);
+      }
+    catch (const std::exception &e)
+      {
+        std::string message = one_line_message(e);
+        if (message.rfind("Mesh: ", 0) == 0)
+          message.erase(0, 6);
+        throw std::runtime_error(section + "/Mesh: " + message);
+      }
+  }
 } // namespace estep

@@ -112,18 +112,7 @@ namespace estep
       prm.enter_subsection("Elastic body");
 
       dealii::Triangulation<3> tria;
-      try
-        {
-          make_mesh(mesh, tria);
-        }
-      catch (const std::exception &e)
-        {
-          // As a scene names its body's Mesh subsection.
-          std::string message = one_line_message(e);
-          if (message.rfind("Mesh: ", 0) == 0)
-            message.erase(0, 6);
-          throw std::runtime_error("Elastic body/Mesh: " + message);
-        }
+      make_mesh(mesh, tria, "Elastic body");
       auto body = std::make_unique<ElasticBodyWithHessian>(tria,
                                                            material.material,
                                                            material.density,

@@ -339,17 +339,7 @@ namespace estep
       mesh.parse_parameters(prm);
       prm.leave_subsection();
       dealii::Triangulation<3> tria;
-      try
-        {
-          make_mesh(mesh, tria);
-        }
-      catch (const std::exception &e)
-        {
-          std::string message = one_line_message(e);
-          if (message.rfind("Mesh: ", 0) == 0)
-            message.erase(0, 6);
-          throw std::runtime_error(section + "/Mesh: " + message);
-        }
+      make_mesh(mesh, tria, section);
 
       prm.enter_subsection("Placement");
       const double scale = prm.get_double("Scale");

@@ -98,6 +98,16 @@ namespace estep
   void
   make_mesh(const MeshDescription       &description,
             dealii::Triangulation<3, 3> &tria);
+
+  /**
+   * make_mesh() for the mesh read from the subsection @p section/Mesh of an
+   * input file: its errors are one std::runtime_error naming that entry
+   * ("Elastic body/Mesh: ...").
+   */
+  void
+  make_mesh(const MeshDescription       &description,
+            dealii::Triangulation<3, 3> &tria,
+            const std::string           &section);
 } // namespace estep
 
 #endif
