@@ -227,11 +227,7 @@ namespace estep
 
     /**
      * Load the plugin libraries, declare every parameter, then read the input
-     * file and the overrides, if any. Declarations may depend on values
-     * (e.g. `Number of bodies` sizes a scene's body subsections): the
-     * parameters are declared once with their defaults, the input is read
-     * leniently, they are declared again with what it set, and the input is
-     * read again, strictly.
+     * file and the overrides, if any (declare_and_read_parameters()).
      */
     void
     read_parameters(const CommandLine &command, dealii::ParameterHandler &prm)
@@ -239,25 +235,7 @@ namespace estep
       if (!command.input_file.empty())
         check_input_file(command.input_file);
       load_plugin_libraries(command);
-      declare_parameters(prm);
-      if (command.input_file.empty() && command.overrides.empty())
-        return;
-      if (!command.input_file.empty())
-        read_input_file(prm, command.input_file, true);
-      for (const std::string &text : command.overrides)
-        try
-          {
-            apply_override(prm, text);
-          }
-        catch (const std::exception &)
-          {
-            // Reported by the strict reading below.
-          }
-      declare_parameters(prm);
-      if (!command.input_file.empty())
-        read_input_file(prm, command.input_file);
-      for (const std::string &text : command.overrides)
-        apply_override(prm, text);
+      declare_and_read_parameters(prm, command.input_file, command.overrides);
     }
 
     /** Input errors that only show in the initial state (e.g. a velocity
@@ -508,6 +486,34 @@ namespace estep
       return exit_code(result);
     }
   } // namespace
+
+
+
+  void
+  declare_and_read_parameters(dealii::ParameterHandler       &prm,
+                              const std::string              &input_file,
+                              const std::vector<std::string> &overrides)
+  {
+    declare_parameters(prm);
+    if (input_file.empty() && overrides.empty())
+      return;
+    if (!input_file.empty())
+      read_input_file(prm, input_file, true);
+    for (const std::string &text : overrides)
+      try
+        {
+          apply_override(prm, text);
+        }
+      catch (const std::exception &)
+        {
+          // Reported by the strict reading below.
+        }
+    declare_parameters(prm);
+    if (!input_file.empty())
+      read_input_file(prm, input_file);
+    for (const std::string &text : overrides)
+      apply_override(prm, text);
+  }
 
 
 
