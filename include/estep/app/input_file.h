@@ -16,8 +16,10 @@ namespace estep
    * .prm file may begin with a UTF-8 byte-order mark (it is dropped); its
    * `include` lines (resolved as deal.II resolves them, from the working
    * directory) may neither form a cycle nor nest deeper than 32 files; a JSON
-   * file may not nest deeper than 64 levels; an entry of an earlier version
-   * of the input that has moved is named with its new place. Each violation
+   * file may not nest deeper than 64 levels; the text of a .prm file (outside
+   * comments) and of a .xml file must be UTF-8, as the parameters.json it
+   * leads to must be; an entry of an earlier version of the input that has
+   * moved is named with its new place. Each violation
    * is a std::runtime_error naming the file and line. @p skip_undeclared:
    * ignore entries and subsections @p prm does not declare (a first reading
    * for a few entries).
