@@ -18,8 +18,10 @@
 #include <estep/time_integration/integrator_registry.h>
 #include <estep/time_integration/time_loop.h>
 
+#include <boost/property_tree/json_parser.hpp>
 #include <dlfcn.h>
 
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -214,6 +216,48 @@ namespace estep
             throw std::runtime_error(
               entry + ": <" + library +
               ">: " + plugin_registration_errors()[errors_before]);
+        }
+    }
+
+    /**
+     * What in @p value a .prm file cannot hold, or an empty string: a run
+     * writes its parameters to parameters.prm, which must read back to the
+     * same values. A value read from a .json or .xml file or from --set may
+     * hold what a .prm line cannot.
+     */
+    std::string
+    prm_obstacle(const std::string &value)
+    {
+      if (value.find('#') != std::string::npos)
+        return "'#' (a comment starts there)";
+      for (const char c : value)
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+          return "a line break or a control character";
+      if (!value.empty() &&
+          (std::isspace(static_cast<unsigned char>(value.front())) ||
+           std::isspace(static_cast<unsigned char>(value.back()))))
+        return "white space at its ends (a .prm line drops it)";
+      if (!value.empty() && value.back() == '\\')
+        return "a final backslash (a continued line there)";
+      return "";
+    }
+
+    /** Throw if a value of @p tree (parameters as ShortJSON prints them) is
+     * one that parameters.prm could not give back. */
+    void
+    check_prm_values(const boost::property_tree::ptree &tree,
+                     const std::string                 &path)
+    {
+      for (const auto &[name, child] : tree)
+        {
+          const std::string entry = path.empty() ? name : path + "/" + name;
+          if (!child.empty())
+            check_prm_values(child, entry);
+          else if (const std::string obstacle = prm_obstacle(child.data());
+                   !obstacle.empty())
+            throw std::runtime_error(
+              entry + ": the value <" + child.data() + "> holds " + obstacle +
+              ", which parameters.prm could not give back.");
         }
     }
 
@@ -513,6 +557,12 @@ namespace estep
       read_input_file(prm, input_file);
     for (const std::string &text : overrides)
       apply_override(prm, text);
+
+    std::stringstream json;
+    prm.print_parameters(json, dealii::ParameterHandler::ShortJSON);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(json, tree);
+    check_prm_values(tree, "");
   }
 
 
