@@ -5,15 +5,27 @@
 #   bash scripts/setup.sh             install what is missing, configure, build
 #   bash scripts/setup.sh --example   ... then run the default example (the quick start)
 #   bash scripts/setup.sh --test      ... then run the default test tier with ctest
+#   bash scripts/setup.sh --sanitize  configure and build with AddressSanitizer and
+#                                     UndefinedBehaviorSanitizer in build-asan/ instead (no
+#                                     Release build), then run the default tier there
+#   bash scripts/setup.sh --fuzz      also install clang 14 with libFuzzer, configure and build
+#                                     the fuzz drivers in build-fuzz/ instead, run ctest -L fuzz
 #
-# Environment: ESTEP_BUILD_DIR (default: build/ in the source tree), ESTEP_JOBS (default: the
-# number of cores).
+# Environment: ESTEP_BUILD_DIR (default: build/, build-asan/ or build-fuzz/ in the source tree),
+# ESTEP_JOBS (default: the number of cores), ESTEP_FUZZ_RUNS (inputs per fuzz driver, default
+# 100000).
 set -euo pipefail
 
 source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${ESTEP_BUILD_DIR:-$source_dir/build}
 jobs=${ESTEP_JOBS:-$(nproc)}
 action=${1:-build}
+case $action in
+  --sanitize) build_dir=${ESTEP_BUILD_DIR:-$source_dir/build-asan} ;;
+  --fuzz) build_dir=${ESTEP_BUILD_DIR:-$source_dir/build-fuzz} ;;
+  *) build_dir=${ESTEP_BUILD_DIR:-$source_dir/build} ;;
+esac
+# The tiers outside the default one: long runs, the figures, the mutation suite, the fuzzers.
+default_tier=(-LE "paper|long|mutation|fuzz")
 
 # libdeal.ii-dev brings deal.II 9.4 with Trilinos, SUNDIALS, HDF5, gmsh, CGAL and MPI; numdiff
 # is expected by deal.II's test tools; GoogleTest for the tests, Google Benchmark for the
@@ -21,6 +33,10 @@ action=${1:-build}
 # for the plotting and study scripts.
 packages=(libdeal.ii-dev cmake g++ make numdiff libgtest-dev libbenchmark-dev clang-format
           python3 python3-matplotlib python3-numpy)
+if [[ $action == --fuzz ]]; then
+  # clang 14 and its runtime libraries: libFuzzer and the sanitizers.
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
 
 packages_to_install=()
 for package in "${packages[@]}"; do
@@ -40,7 +56,16 @@ if ((${#packages_to_install[@]})); then
   $sudo apt-get install -y -qq --no-install-recommends "${packages_to_install[@]}"
 fi
 
-cmake -S "$source_dir" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
+configuration=(-DCMAKE_BUILD_TYPE=Release)
+case $action in
+  --sanitize) configuration+=(-DESTEP_SANITIZE=ON) ;;
+  --fuzz)
+    configuration+=(-DCMAKE_CXX_COMPILER=clang++-14 -DESTEP_SANITIZE=ON -DESTEP_BUILD_FUZZERS=ON
+                    -DESTEP_BUILD_TESTS=OFF -DESTEP_BUILD_BENCHMARKS=OFF
+                    -DESTEP_FUZZ_RUNS="${ESTEP_FUZZ_RUNS:-100000}")
+    ;;
+esac
+cmake -S "$source_dir" -B "$build_dir" "${configuration[@]}"
 cmake --build "$build_dir" -j "$jobs"
 
 case $action in
@@ -49,12 +74,16 @@ case $action in
     cd "$source_dir"
     "$build_dir/bin/estep" parameter_files/quick_start.prm
     ;;
-  --test)
+  --test | --sanitize)
     cd "$build_dir"
-    ctest -LE "paper|long|mutation" -j "$jobs" --output-on-failure
+    ctest "${default_tier[@]}" -j "$jobs" --output-on-failure
+    ;;
+  --fuzz)
+    cd "$build_dir"
+    ctest -L fuzz -j "$jobs" --output-on-failure
     ;;
   *)
-    echo "estep setup: unknown action <$action> (use --example or --test)" >&2
+    echo "estep setup: unknown action <$action> (use --example, --test, --sanitize or --fuzz)" >&2
     exit 1
     ;;
 esac

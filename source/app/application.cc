@@ -19,9 +19,11 @@
 #include <estep/time_integration/integrator_registry.h>
 #include <estep/time_integration/time_loop.h>
 
+#include <boost/property_tree/json_parser.hpp>
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -228,6 +230,48 @@ namespace estep
         }
     }
 
+    /**
+     * What in @p value a .prm file cannot hold, or an empty string: a run
+     * writes its parameters to parameters.prm, which must read back to the
+     * same values. A value read from a .json or .xml file or from --set may
+     * hold what a .prm line cannot.
+     */
+    std::string
+    prm_obstacle(const std::string &value)
+    {
+      if (value.find('#') != std::string::npos)
+        return "'#' (a comment starts there)";
+      for (const char c : value)
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+          return "a line break or a control character";
+      if (!value.empty() &&
+          (std::isspace(static_cast<unsigned char>(value.front())) ||
+           std::isspace(static_cast<unsigned char>(value.back()))))
+        return "white space at its ends (a .prm line drops it)";
+      if (!value.empty() && value.back() == '\\')
+        return "a final backslash (a continued line there)";
+      return "";
+    }
+
+    /** Throw if a value of @p tree (parameters as ShortJSON prints them) is
+     * one that parameters.prm could not give back. */
+    void
+    check_prm_values(const boost::property_tree::ptree &tree,
+                     const std::string                 &path)
+    {
+      for (const auto &[name, child] : tree)
+        {
+          const std::string entry = path.empty() ? name : path + "/" + name;
+          if (!child.empty())
+            check_prm_values(child, entry);
+          else if (const std::string obstacle = prm_obstacle(child.data());
+                   !obstacle.empty())
+            throw std::runtime_error(
+              entry + ": the value <" + child.data() + "> holds " + obstacle +
+              ", which parameters.prm could not give back.");
+        }
+    }
+
     /** Declare every parameter. */
     void
     declare_parameters(dealii::ParameterHandler &prm)
@@ -238,11 +282,7 @@ namespace estep
 
     /**
      * Load the plugin libraries, declare every parameter, then read the input
-     * file and the overrides, if any. Declarations may depend on values
-     * (e.g. `Number of bodies` sizes a scene's body subsections): the
-     * parameters are declared once with their defaults, the input is read
-     * leniently, they are declared again with what it set, and the input is
-     * read again, strictly.
+     * file and the overrides, if any (declare_and_read_parameters()).
      */
     void
     read_parameters(const CommandLine &command, dealii::ParameterHandler &prm)
@@ -250,25 +290,7 @@ namespace estep
       if (!command.input_file.empty())
         check_input_file(command.input_file);
       load_plugin_libraries(command);
-      declare_parameters(prm);
-      if (command.input_file.empty() && command.overrides.empty())
-        return;
-      if (!command.input_file.empty())
-        read_input_file(prm, command.input_file, true);
-      for (const std::string &text : command.overrides)
-        try
-          {
-            apply_override(prm, text);
-          }
-        catch (const std::exception &)
-          {
-            // Reported by the strict reading below.
-          }
-      declare_parameters(prm);
-      if (!command.input_file.empty())
-        read_input_file(prm, command.input_file);
-      for (const std::string &text : command.overrides)
-        apply_override(prm, text);
+      declare_and_read_parameters(prm, command.input_file, command.overrides);
     }
 
     /** Input errors that only show in the initial state (e.g. a velocity
@@ -594,6 +616,40 @@ namespace estep
       return exit_code(result);
     }
   } // namespace
+
+
+
+  void
+  declare_and_read_parameters(dealii::ParameterHandler       &prm,
+                              const std::string              &input_file,
+                              const std::vector<std::string> &overrides)
+  {
+    declare_parameters(prm);
+    if (input_file.empty() && overrides.empty())
+      return;
+    if (!input_file.empty())
+      read_input_file(prm, input_file, true);
+    for (const std::string &text : overrides)
+      try
+        {
+          apply_override(prm, text);
+        }
+      catch (const std::exception &)
+        {
+          // Reported by the strict reading below.
+        }
+    declare_parameters(prm);
+    if (!input_file.empty())
+      read_input_file(prm, input_file);
+    for (const std::string &text : overrides)
+      apply_override(prm, text);
+
+    std::stringstream json;
+    prm.print_parameters(json, dealii::ParameterHandler::ShortJSON);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(json, tree);
+    check_prm_values(tree, "");
+  }
 
 
 

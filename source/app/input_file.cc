@@ -49,6 +49,71 @@ namespace estep
                           extension) == 0;
     }
 
+    /**
+     * The position of the first byte of @p text that does not belong to
+     * valid UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing above
+     * U+10FFFF), or npos. The values an input sets are printed to
+     * parameters.json, which must read back: JSON text is UTF-8.
+     */
+    std::size_t
+    invalid_utf8_position(const std::string &text)
+    {
+      std::size_t i = 0;
+      while (i < text.size())
+        {
+          const auto byte = [&](const std::size_t k) {
+            return static_cast<unsigned char>(text[k]);
+          };
+          const unsigned char lead = byte(i);
+          std::size_t         length;
+          unsigned char       low = 0x80, high = 0xBF; // second byte's range
+          if (lead < 0x80)
+            length = 1;
+          else if (lead >= 0xC2 && lead <= 0xDF)
+            length = 2;
+          else if (lead >= 0xE0 && lead <= 0xEF)
+            {
+              length = 3;
+              if (lead == 0xE0)
+                low = 0xA0;
+              else if (lead == 0xED)
+                high = 0x9F;
+            }
+          else if (lead >= 0xF0 && lead <= 0xF4)
+            {
+              length = 4;
+              if (lead == 0xF0)
+                low = 0x90;
+              else if (lead == 0xF4)
+                high = 0x8F;
+            }
+          else
+            return i;
+          if (i + length > text.size())
+            return i;
+          for (std::size_t k = 1; k < length; ++k)
+            if (byte(i + k) < (k == 1 ? low : 0x80) ||
+                byte(i + k) > (k == 1 ? high : 0xBF))
+              return i;
+          i += length;
+        }
+      return std::string::npos;
+    }
+
+    /** Throw if @p text (line @p number of @p filename) is not UTF-8. */
+    void
+    check_utf8(const std::string &text,
+               const unsigned int number,
+               const std::string &filename)
+    {
+      const std::size_t position = invalid_utf8_position(text);
+      if (position != std::string::npos)
+        throw std::runtime_error(
+          "Line <" + std::to_string(number) + "> of file <" + filename +
+          ">: not UTF-8 text (column " + std::to_string(position + 1) +
+          "); estep reads its input files as UTF-8.");
+    }
+
     /** The first word of @p line (lower case) and the rest, trimmed. */
     std::pair<std::string, std::string>
     keyword_and_rest(const std::string &line)
@@ -82,7 +147,9 @@ namespace estep
       std::string        line;
       for (unsigned int number = 1; std::getline(lines, line); ++number)
         {
-          line = dealii::Utilities::trim(line.substr(0, line.find('#')));
+          line = line.substr(0, line.find('#'));
+          check_utf8(line, number, filename);
+          line                       = dealii::Utilities::trim(line);
           const auto [keyword, rest] = keyword_and_rest(line);
           const std::string where    = "Line <" + std::to_string(number) +
                                     "> of file <" + filename + ">: ";
@@ -318,6 +385,10 @@ namespace estep
       }
     if (ends_with(filename, ".xml"))
       {
+        std::istringstream lines(read_text(filename));
+        std::string        line;
+        for (unsigned int number = 1; std::getline(lines, line); ++number)
+          check_utf8(line, number, filename);
         prm.parse_input(filename, "", skip_undeclared);
         return;
       }

@@ -4,6 +4,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/composite/static_surface.h>
+#include <estep/fem/gmsh_check.h>
 
 #include <algorithm>
 #include <array>
@@ -143,6 +144,7 @@ namespace estep
     dealii::Triangulation<2, 3> tria;
     try
       {
+        check_gmsh_file(filename, 2);
         dealii::GridIn<2, 3> grid_in(tria);
         grid_in.read_msh(in);
       }

@@ -286,7 +286,10 @@ namespace estep
             ++result.n_iterations;
             double    w[3];
             const int c = classify(b, w);
-            if (c < 0)
+            // A box without contact ends nothing, unless it is the last one
+            // the cap allows and others remain.
+            if (c < 0 &&
+                (result.n_iterations < settings.max_iterations || heap.empty()))
               continue;
             if (c > 0 || result.n_iterations >= settings.max_iterations)
               {
@@ -294,7 +297,7 @@ namespace estep
                 // contact time.
                 result.hit    = true;
                 result.time   = b.t0;
-                result.capped = (c == 0);
+                result.capped = (c <= 0);
                 return result;
               }
             // Split where F varies most (the corner values measure it exactly).

@@ -10,6 +10,7 @@
 #include <estep/base/exception_text.h>
 #include <estep/base/point_entry.h>
 #include <estep/fem/ball_mesh.h>
+#include <estep/fem/gmsh_check.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
 
@@ -179,6 +180,7 @@ namespace estep
         dealii::GridIn<3, 3> grid_in(tria);
         try
           {
+            check_gmsh_file(d.file_name, 3);
             grid_in.read_msh(file);
           }
         catch (const std::exception &e)

@@ -8,10 +8,11 @@
 
 // glibc's vector logarithms (libmvec, resolved through libm's linker script).
 // Calling them directly keeps -ffast-math out of the build: only these calls
-// are vectorised.
-extern "C" __m128d _ZGVbN2v_log(__m128d);
-extern "C" __m256d _ZGVdN4v_log(__m256d);
-extern "C" __m512d _ZGVeN8v_log(__m512d);
+// are vectorised. The AVX ones take their arguments in AVX registers: their
+// declarations carry the target (clang rejects the calls otherwise).
+extern "C" __m128d                                     _ZGVbN2v_log(__m128d);
+extern "C" __attribute__((target("avx2,fma"))) __m256d _ZGVdN4v_log(__m256d);
+extern "C" __attribute__((target("avx512f"))) __m512d  _ZGVeN8v_log(__m512d);
 #endif
 
 namespace estep

@@ -1,6 +1,14 @@
 #ifndef estep_app_application_h
 #define estep_app_application_h
 
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
 namespace estep
 {
   /** Exit codes of the estep command. */
@@ -33,6 +41,27 @@ namespace estep
    */
   int
   run_application(int argc, char **argv);
+
+  /**
+   * Declare every parameter of the registered plugins in @p prm, then read
+   * the input file @p input_file (.prm, .json or .xml, see read_input_file();
+   * none if empty) and the overrides @p overrides ("Section/Entry=value"), as
+   * the estep command does once it has loaded the libraries of `Additional
+   * shared libraries` (this function loads none). Declarations may depend on
+   * values (e.g. `Number of bodies` sizes a scene's body subsections): the
+   * parameters are declared once with their defaults, the input is read
+   * leniently, they are declared again with what it set, and the input is
+   * read again, strictly. A value that a .prm file cannot hold (with '#', a
+   * line break or a control character, white space at its ends, a final
+   * backslash: possible from a .json or .xml file or an override) is
+   * rejected, since parameters.prm of a run must read back to the same
+   * parameters. Bad input throws (std::runtime_error or a deal.II exception)
+   * with one message.
+   */
+  void
+  declare_and_read_parameters(dealii::ParameterHandler       &prm,
+                              const std::string              &input_file,
+                              const std::vector<std::string> &overrides = {});
 } // namespace estep
 
 #endif

@@ -89,9 +89,8 @@ namespace estep
     std::memcpy(p, &x, sizeof x);
   }
 
-  /** Lane indices of __builtin_shuffle for Lanes. */
-  typedef long long LaneIndex
-    __attribute__((vector_size(4 * sizeof(long long))));
+  // The shuffles below are __builtin_shufflevector (GCC 12 and Clang; GCC's
+  // older __builtin_shuffle is unknown to Clang).
 
   /**
    * The triples x[3 index[k] + c], c = 0, 1, 2, of four entries k as three
@@ -105,13 +104,13 @@ namespace estep
                 r1 = load_lanes(x + 3 * index[1]),
                 r2 = load_lanes(x + 3 * index[2]),
                 r3 = load_lanes(x + 3 * index[3]);
-    const Lanes t0 = __builtin_shuffle(r0, r1, LaneIndex{0, 4, 2, 6}),
-                t1 = __builtin_shuffle(r0, r1, LaneIndex{1, 5, 3, 7}),
-                t2 = __builtin_shuffle(r2, r3, LaneIndex{0, 4, 2, 6}),
-                t3 = __builtin_shuffle(r2, r3, LaneIndex{1, 5, 3, 7});
-    xyz[0]         = __builtin_shuffle(t0, t2, LaneIndex{0, 1, 4, 5});
-    xyz[1]         = __builtin_shuffle(t1, t3, LaneIndex{0, 1, 4, 5});
-    xyz[2]         = __builtin_shuffle(t0, t2, LaneIndex{2, 3, 6, 7});
+    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6),
+                t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7),
+                t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6),
+                t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+    xyz[0]         = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    xyz[1]         = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    xyz[2]         = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   }
 
   /**
@@ -123,15 +122,15 @@ namespace estep
   ESTEP_LANE_INLINE void
   add_triples(double *y, const unsigned int *index, const Lanes *xyz)
   {
-    const Lanes zero = lanes(0.);
-    const Lanes t0   = __builtin_shuffle(xyz[0], xyz[1], LaneIndex{0, 4, 1, 5}),
-                t1   = __builtin_shuffle(xyz[0], xyz[1], LaneIndex{2, 6, 3, 7}),
-                t2   = __builtin_shuffle(xyz[2], zero, LaneIndex{0, 4, 1, 5}),
-                t3   = __builtin_shuffle(xyz[2], zero, LaneIndex{2, 6, 3, 7});
-    const Lanes rows[4] = {__builtin_shuffle(t0, t2, LaneIndex{0, 1, 4, 5}),
-                           __builtin_shuffle(t0, t2, LaneIndex{2, 3, 6, 7}),
-                           __builtin_shuffle(t1, t3, LaneIndex{0, 1, 4, 5}),
-                           __builtin_shuffle(t1, t3, LaneIndex{2, 3, 6, 7})};
+    const Lanes zero    = lanes(0.);
+    const Lanes t0      = __builtin_shufflevector(xyz[0], xyz[1], 0, 4, 1, 5),
+                t1      = __builtin_shufflevector(xyz[0], xyz[1], 2, 6, 3, 7),
+                t2      = __builtin_shufflevector(xyz[2], zero, 0, 4, 1, 5),
+                t3      = __builtin_shufflevector(xyz[2], zero, 2, 6, 3, 7);
+    const Lanes rows[4] = {__builtin_shufflevector(t0, t2, 0, 1, 4, 5),
+                           __builtin_shufflevector(t0, t2, 2, 3, 6, 7),
+                           __builtin_shufflevector(t1, t3, 0, 1, 4, 5),
+                           __builtin_shufflevector(t1, t3, 2, 3, 6, 7)};
     for (unsigned int k = 0; k < n_lanes; ++k)
       {
         double *row = y + 3 * index[k];

@@ -52,8 +52,9 @@ namespace estep
 
   /**
    * The triangles of a gmsh surface mesh (.msh, formats 2 and 4 that
-   * deal.II's GridIn<2, 3>::read_msh() reads), read through a
-   * dealii::Triangulation<2, 3>; the points are the triangulation's used
+   * deal.II's GridIn<2, 3>::read_msh() reads, once check_gmsh_file() has
+   * found it safe to), read through a dealii::Triangulation<2, 3>; the
+   * points are the triangulation's used
    * vertices in their order. Throws std::runtime_error naming the file if
    * it cannot be read, has no triangle or has elements that are not
    * triangles.

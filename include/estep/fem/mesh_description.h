@@ -92,8 +92,9 @@ namespace estep
   /**
    * Build the mesh described by @p description into the empty @p tria. Throws
    * dealii::ExcMessage with one clear message for an unknown type, bad
-   * arguments, a missing or unreadable file, and non-tetrahedral, inverted or
-   * degenerate cells.
+   * arguments, a missing or unreadable file (a gmsh file is first checked
+   * with check_gmsh_file()), and non-tetrahedral, inverted or degenerate
+   * cells.
    */
   void
   make_mesh(const MeshDescription       &description,
