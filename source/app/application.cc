@@ -11,6 +11,7 @@
 #include <estep/base/config.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
+#include <estep/base/parallel_blocks.h>
 #include <estep/io/checkpoint.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
@@ -51,6 +52,8 @@ namespace estep
       "                                 is a .json file, PRM otherwise\n"
       "  -s, --set \"Section/Entry=value\" override an entry of INPUT.prm (repeatable);\n"
       "                                 nested subsections are separated by '/'\n"
+      "  --threads N                    run the loops over cells on N threads (the\n"
+      "                                 entry Threads; 0: one per core, the default)\n"
       "  --resume                       continue the run from the checkpoint in its\n"
       "                                 output directory (Output/Checkpoint interval),\n"
       "                                 appending to its outputs; without a checkpoint\n"
@@ -117,6 +120,13 @@ namespace estep
             command.print_parameters = true;
           else if (arg == "--resume")
             command.resume = true;
+          else if (arg == "--threads")
+            {
+              if (i + 1 >= argc)
+                throw std::runtime_error(
+                  "The option --threads needs a number of threads.");
+              command.overrides.push_back(std::string("Threads=") + argv[++i]);
+            }
           else if (arg == "-s" || arg == "--set")
             {
               if (i + 1 >= argc)
@@ -512,6 +522,7 @@ namespace estep
       read_parameters(command, prm);
       RunParameters parameters;
       parameters.parse_parameters(prm);
+      set_thread_count(parameters.threads);
 
       const Problem problem = create_problem(prm);
       check_initial_state(problem);

@@ -50,6 +50,15 @@ namespace estep
       "the dynamic loader searches (LD_LIBRARY_PATH), so give a path such "
       "as ./libmy_plugin.so.");
 
+    prm.declare_entry(
+      "Threads",
+      "0",
+      dealii::Patterns::Integer(0, 4096),
+      "Threads the loops over cells use: 0 for one per core (at most "
+      "DEAL_II_NUM_THREADS if that is set), 1 for none. The trajectory is "
+      "the same to the last bit on any number (the command line's --threads "
+      "N sets this entry).");
+
     prm.enter_subsection("Time integration");
     {
       prm.declare_entry("Start time", "0", Double(-max, max), "Initial time.");
@@ -117,6 +126,7 @@ namespace estep
   RunParameters::parse_parameters(dealii::ParameterHandler &prm)
   {
     output_directory = prm.get("Output directory");
+    threads          = prm.get_integer("Threads");
     if (output_directory.empty())
       throw std::runtime_error("Output directory: must not be empty.");
 

@@ -7,6 +7,7 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 #include <estep/fem/meshes.h>
@@ -201,15 +202,31 @@ namespace estep
   namespace
   {
     /**
-     * J_e = det F_e of every cell (padding included) into @p J for positions
-     * @p x (padded, see load_triples()); returns sum_e |Omega_e| (|F_e|^2 -
-     * 3).
+     * Where the forces of vertex @p a of the batch of four cells holding cell
+     * @p e start in the cell force array of assemble_gradient() (12 doubles
+     * per cell: per batch, the vertices in turn, each with its x, y and z
+     * lanes). The offsets of the forces on one point, in increasing order,
+     * are the order in which the scatter adds them.
+     */
+    inline std::size_t
+    cell_force_offset(const unsigned int e, const unsigned int a)
+    {
+      return 12 * std::size_t(e - e % n_lanes) + 12 * a + e % n_lanes;
+    }
+
+    /**
+     * J_e = det F_e of the cells of @p cells (padding included) into @p J for
+     * positions @p x (padded, see load_triples()); returns the sum over them
+     * of |Omega_e| (|F_e|^2 - 3).
      */
     ESTEP_LANE_KERNEL double
-    jacobians_and_square_sum(const P1CellData &data, const double *x, double *J)
+    jacobians_and_square_sum(const P1CellData &data,
+                             const double     *x,
+                             const BlockRange  cells,
+                             double           *J)
     {
       Lanes square = lanes(0.);
-      for (unsigned int e = 0; e < data.n_cells; e += n_lanes)
+      for (unsigned int e = cells.begin; e < cells.end; e += n_lanes)
         {
           Lanes F[9], C[9];
           internal::deformation_gradient(x, data, e, F);
@@ -222,25 +239,30 @@ namespace estep
     }
 
     /**
-     * Adds the nodal forces |Omega_e| P_e grad N_a of every cell to @p y (with
-     * one writable double after its last point, see add_triples()), with
+     * The nodal forces |Omega_e| P_e grad N_a of the cells of @p cells, with
      * P = f'(J) cof F + c F, in chunks of cells: F and cof F stay in L1
      * between the determinant pass and the assembly pass, and f'(J) is one
-     * batch call of the material per chunk.
+     * batch call of the material per chunk. They are added to @p y (with one
+     * writable double after its last point, see add_triples()) in the order
+     * (batch of four cells, vertex a, cell of the batch); or, if @p forces is
+     * not null, stored there: force component i on vertex a of cell e at
+     * forces[cell_force_offset(e, a) + 4 i].
      */
     ESTEP_LANE_KERNEL void
     assemble_gradient(const P1CellData &data,
                       const Material   &material,
                       const double     *x,
-                      double           *y)
+                      const BlockRange  cells,
+                      double           *y,
+                      double           *forces)
     {
       constexpr unsigned int chunk = 128; // a multiple of n_lanes
       const double           c     = material.quadratic_modulus();
       Lanes                  F[chunk / n_lanes][9], C[chunk / n_lanes][9];
       double                 J[chunk], df[chunk];
-      for (unsigned int begin = 0; begin < data.n_cells; begin += chunk)
+      for (unsigned int begin = cells.begin; begin < cells.end; begin += chunk)
         {
-          const unsigned int m = std::min(chunk, data.n_padded_cells() - begin);
+          const unsigned int m = std::min(chunk, cells.end - begin);
           for (unsigned int b = 0; b < m / n_lanes; ++b)
             {
               internal::deformation_gradient(x,
@@ -277,10 +299,16 @@ namespace estep
                       force[0][i] -= force[a + 1][i];
                     }
                 }
-              // Added cell by cell (the cells of a batch may share
-              // vertices).
-              for (unsigned int a = 0; a < 4; ++a)
-                add_triples(y, data.point[a].data() + e, force[a]);
+              if (forces != nullptr)
+                for (unsigned int a = 0; a < 4; ++a)
+                  for (unsigned int i = 0; i < 3; ++i)
+                    store_lanes(forces + cell_force_offset(e, a) + 4 * i,
+                                force[a][i]);
+              else
+                // Added cell by cell (the cells of a batch may share
+                // vertices).
+                for (unsigned int a = 0; a < 4; ++a)
+                  add_triples(y, data.point[a].data() + e, force[a]);
             }
         }
     }
@@ -291,18 +319,38 @@ namespace estep
   {
     AssertDimension(q.size(), n_dofs());
     internal::copy_padded(q.data(), q.size(), scratch_positions);
-    const double square = jacobians_and_square_sum(data,
-                                                   scratch_positions.data(),
-                                                   scratch_J.data());
-    const double volumetric =
-      body_material->sum_volumetric_energy(scratch_J.data(),
-                                           data.volume.data(),
-                                           data.n_cells);
-    if (!std::isfinite(volumetric))
+    // Per block: the volumetric energy and the sum of |Omega_e| (|F_e|^2 - 3).
+    struct Terms
+    {
+      double volumetric, square;
+      Terms &
+      operator+=(const Terms &other)
+      {
+        volumetric += other.volumetric;
+        square += other.square;
+        return *this;
+      }
+    };
+    const unsigned int n_padded = data.n_padded_cells();
+    const Terms        terms =
+      sum_over_blocks<Terms>(n_blocks(n_padded), [&](const unsigned int b) {
+        const BlockRange cells  = block_range(b, n_padded);
+        const double     square = jacobians_and_square_sum(data,
+                                                       scratch_positions.data(),
+                                                       cells,
+                                                       scratch_J.data());
+        return Terms{body_material->sum_volumetric_energy(
+                       scratch_J.data() + cells.begin,
+                       data.volume.data() + cells.begin,
+                       std::min(cells.end, data.n_cells) - cells.begin),
+                     square};
+      });
+    if (!std::isfinite(terms.volumetric))
       return std::numeric_limits<double>::infinity();
     // W - W_0 = f(J) - f(1) + c/2 (|F|^2 - 3), summed so that the undeformed
     // state gives 0 up to round-off of the cells, not of the totals.
-    return volumetric + 0.5 * body_material->quadratic_modulus() * square -
+    return terms.volumetric +
+           0.5 * body_material->quadratic_modulus() * terms.square -
            body_material->volumetric_energy(1.) * total_volume;
   }
 
@@ -311,13 +359,65 @@ namespace estep
   {
     AssertDimension(q.size(), n_dofs());
     internal::copy_padded(q.data(), q.size(), scratch_positions);
-    scratch_forces.assign(q.size() + 1, 0.);
-    assemble_gradient(data,
-                      *body_material,
-                      scratch_positions.data(),
-                      scratch_forces.data());
+    const unsigned int n_padded = data.n_padded_cells();
     g.reinit(n_dofs(), true);
-    std::copy(scratch_forces.begin(), scratch_forces.end() - 1, g.begin());
+    if (thread_count() == 1 || n_blocks(n_padded) == 1)
+      {
+        scratch_forces.assign(q.size() + 1, 0.);
+        assemble_gradient(data,
+                          *body_material,
+                          scratch_positions.data(),
+                          {0, n_padded},
+                          scratch_forces.data(),
+                          nullptr);
+        std::copy(scratch_forces.begin(), scratch_forces.end() - 1, g.begin());
+        return;
+      }
+    // On several threads: the forces of each cell into their own place, then
+    // each point's sum of them in the order in which the scatter above adds
+    // them (point_forces lists them so), which gives the same bits.
+    if (point_forces.start.empty())
+      point_forces = PointForces(data);
+    scratch_forces.resize(12 * std::size_t(n_padded));
+    for_each_block(n_blocks(n_padded), [&](const unsigned int b) {
+      assemble_gradient(data,
+                        *body_material,
+                        scratch_positions.data(),
+                        block_range(b, n_padded),
+                        nullptr,
+                        scratch_forces.data());
+    });
+    for_each_block(n_blocks(data.n_points), [&](const unsigned int b) {
+      const BlockRange points = block_range(b, data.n_points);
+      for (unsigned int p = points.begin; p < points.end; ++p)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            double sum = 0.;
+            for (unsigned int k = point_forces.start[p];
+                 k < point_forces.start[p + 1];
+                 ++k)
+              sum += scratch_forces[point_forces.offset[k] + 4 * i];
+            g[3 * p + i] = sum;
+          }
+    });
+  }
+
+  ElasticBody::PointForces::PointForces(const P1CellData &data)
+    : start(data.n_points + 1, 0)
+  {
+    const unsigned int n_padded = data.n_padded_cells();
+    for (unsigned int e = 0; e < n_padded; ++e)
+      for (unsigned int a = 0; a < 4; ++a)
+        ++start[data.point[a][e] + 1];
+    for (unsigned int p = 0; p < data.n_points; ++p)
+      start[p + 1] += start[p];
+    offset.resize(start.back());
+    std::vector<unsigned int> next(start.begin(), start.end() - 1);
+    // Batch by batch, vertex by vertex, cell by cell: increasing offsets.
+    for (unsigned int batch = 0; batch < n_padded; batch += n_lanes)
+      for (unsigned int a = 0; a < 4; ++a)
+        for (unsigned int e = batch; e < batch + n_lanes; ++e)
+          offset[next[data.point[a][e]]++] = cell_force_offset(e, a);
   }
 
   std::unique_ptr<FreeFlight>

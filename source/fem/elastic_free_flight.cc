@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace estep
 {
@@ -171,24 +173,38 @@ namespace estep
       return std::min(first_root_from_below(c0, c1, c2, c3, u, w), limit);
     }
 
+    /** Sums over cells of |Omega_e| (|F_e|^2 - 3), |Omega_e| F_e : G_e and
+     * |Omega_e| |G_e|^2. */
+    struct QuadraticSums
+    {
+      double FF, FG, GG;
+      QuadraticSums &
+      operator+=(const QuadraticSums &other)
+      {
+        FF += other.FF;
+        FG += other.FG;
+        GG += other.GG;
+        return *this;
+      }
+    };
+
     /**
-     * The cubic coefficients of J_e(s) of every cell (padding included) and
-     * sums[] = sum_e |Omega_e| (|F_e|^2 - 3), sum_e |Omega_e| F_e : G_e and
-     * sum_e |Omega_e| |G_e|^2, four cells at a time (q and v padded, see
-     * load_triples()).
+     * The cubic coefficients of J_e(s) of the cells of @p cells (padding
+     * included) and their QuadraticSums, four cells at a time (q and v
+     * padded, see load_triples()).
      */
-    ESTEP_LANE_KERNEL void
+    ESTEP_LANE_KERNEL QuadraticSums
     build_cubics(const P1CellData &d,
                  const double     *q,
                  const double     *v,
+                 const BlockRange  cells,
                  double           *c0,
                  double           *c1,
                  double           *c2,
-                 double           *c3,
-                 double           *sums)
+                 double           *c3)
     {
       Lanes FF = lanes(0.), FG = lanes(0.), GG = lanes(0.);
-      for (unsigned int e = 0; e < d.n_cells; e += n_lanes)
+      for (unsigned int e = cells.begin; e < cells.end; e += n_lanes)
         {
           Lanes F[9], G[9], CF[9], CG[9];
           internal::deformation_gradient(q, d, e, F);
@@ -204,9 +220,7 @@ namespace estep
           FG += w * internal::contract(F, G);
           GG += w * internal::contract(G, G);
         }
-      sums[0] = sum(FF);
-      sums[1] = sum(FG);
-      sums[2] = sum(GG);
+      return {sum(FF), sum(FG), sum(GG)};
     }
 
     /**
@@ -254,10 +268,18 @@ namespace estep
     std::vector<double> padded_q, padded_v;
     internal::copy_padded(q.data(), q.size(), padded_q);
     internal::copy_padded(v.data(), v.size(), padded_v);
-    double sums[3];
-    build_cubics(
-      body.cell_data(), padded_q.data(), padded_v.data(), c0, c1, c2, c3, sums);
-    const double    FF = sums[0], FG = sums[1], GG = sums[2];
+    const QuadraticSums sums = sum_over_blocks<QuadraticSums>(
+      n_blocks(n_padded), [&](const unsigned int b) {
+        return build_cubics(body.cell_data(),
+                            padded_q.data(),
+                            padded_v.data(),
+                            block_range(b, n_padded),
+                            c0,
+                            c1,
+                            c2,
+                            c3);
+      });
+    const double    FF = sums.FF, FG = sums.FG, GG = sums.GG;
     const Material &material = body.material();
     const double    c        = material.quadratic_modulus();
     quadratic[0] =
@@ -281,12 +303,23 @@ namespace estep
   double
   ElasticFreeFlight::value(const double s) const
   {
-    double *J = scratch;
-    evaluate_cubics(s, c0, c1, c2, c3, n_cells, J, nullptr);
     const double volumetric =
-      body.material().sum_volumetric_energy(J,
-                                            body.cell_data().volume.data(),
-                                            n_cells);
+      sum_over_blocks<double>(n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange cells = block_range(b, n_cells);
+        double          *J     = scratch + cells.begin;
+        evaluate_cubics(s,
+                        c0 + cells.begin,
+                        c1 + cells.begin,
+                        c2 + cells.begin,
+                        c3 + cells.begin,
+                        cells.end - cells.begin,
+                        J,
+                        nullptr);
+        return body.material().sum_volumetric_energy(
+          J,
+          body.cell_data().volume.data() + cells.begin,
+          cells.end - cells.begin);
+      });
     if (!std::isfinite(volumetric))
       return infinity;
     return volumetric + (quadratic[0] + s * (quadratic[1] + s * quadratic[2]));
@@ -295,10 +328,25 @@ namespace estep
   LineValue
   ElasticFreeFlight::value_and_derivative(const double s) const
   {
-    double *J = scratch, *dJ = scratch + body.cell_data().n_padded_cells();
-    evaluate_cubics(s, c0, c1, c2, c3, n_cells, J, dJ);
-    LineValue r = body.material().sum_volumetric_energy_and_slope(
-      J, dJ, body.cell_data().volume.data(), n_cells);
+    const unsigned int n_padded = body.cell_data().n_padded_cells();
+    LineValue          r =
+      sum_over_blocks<LineValue>(n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange cells = block_range(b, n_cells);
+        double          *J = scratch + cells.begin, *dJ = J + n_padded;
+        evaluate_cubics(s,
+                        c0 + cells.begin,
+                        c1 + cells.begin,
+                        c2 + cells.begin,
+                        c3 + cells.begin,
+                        cells.end - cells.begin,
+                        J,
+                        dJ);
+        return body.material().sum_volumetric_energy_and_slope(
+          J,
+          dJ,
+          body.cell_data().volume.data() + cells.begin,
+          cells.end - cells.begin);
+      });
     if (!std::isfinite(r.value))
       return {infinity, 0.};
     r.value += quadratic[0] + s * (quadratic[1] + s * quadratic[2]);
@@ -407,33 +455,67 @@ namespace estep
     if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
       return std::nullopt;
     const double m = about.centre, r = about.radius;
-    // The curvature of the volumetric part, chunk by chunk (the interval sum
-    // rounds outward).
-    JacobianRanges ranges;
-    Interval       curvature{0., 0.};
-    double         slope_magnitude = 0.;
-    for (unsigned int begin = 0; begin < n_cells; begin += JacobianRanges::size)
+    // The curvature of the volumetric part, block by block and in each chunk
+    // by chunk (the interval sum rounds outward); unbounded if it is in some
+    // chunk.
+    struct CurvatureTerms
+    {
+      Interval curvature;
+      double   slope_magnitude;
+      bool     bounded;
+      CurvatureTerms &
+      operator+=(const CurvatureTerms &other)
       {
-        const unsigned int count =
-          std::min(JacobianRanges::size, n_cells - begin);
-        enclose_cubics(
-          m, r, c0 + begin, c1 + begin, c2 + begin, c3 + begin, count, ranges);
-        double         chunk_slope = 0.;
-        const Interval chunk = body.material().enclose_volumetric_curvature_sum(
-          ranges.J_lo,
-          ranges.J_hi,
-          ranges.dJ_lo,
-          ranges.dJ_hi,
-          ranges.d2J_lo,
-          ranges.d2J_hi,
-          body.cell_data().volume.data() + begin,
-          count,
-          chunk_slope);
-        if (!std::isfinite(chunk.lower) || !std::isfinite(chunk.upper))
-          return std::nullopt;
-        curvature += chunk;
-        slope_magnitude += chunk_slope;
+        curvature += other.curvature;
+        slope_magnitude += other.slope_magnitude;
+        bounded = bounded && other.bounded;
+        return *this;
       }
+    };
+    CurvatureTerms terms = sum_over_blocks<CurvatureTerms>(
+      n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange cells = block_range(b, n_cells);
+        JacobianRanges   ranges;
+        CurvatureTerms   block_terms{{0., 0.}, 0., true};
+        for (unsigned int begin = cells.begin; begin < cells.end;
+             begin += JacobianRanges::size)
+          {
+            const unsigned int count =
+              std::min(JacobianRanges::size, cells.end - begin);
+            enclose_cubics(m,
+                           r,
+                           c0 + begin,
+                           c1 + begin,
+                           c2 + begin,
+                           c3 + begin,
+                           count,
+                           ranges);
+            double         chunk_slope = 0.;
+            const Interval chunk =
+              body.material().enclose_volumetric_curvature_sum(
+                ranges.J_lo,
+                ranges.J_hi,
+                ranges.dJ_lo,
+                ranges.dJ_hi,
+                ranges.d2J_lo,
+                ranges.d2J_hi,
+                body.cell_data().volume.data() + begin,
+                count,
+                chunk_slope);
+            if (!std::isfinite(chunk.lower) || !std::isfinite(chunk.upper))
+              {
+                block_terms.bounded = false;
+                break;
+              }
+            block_terms.curvature += chunk;
+            block_terms.slope_magnitude += chunk_slope;
+          }
+        return block_terms;
+      });
+    if (!terms.bounded)
+      return std::nullopt;
+    Interval &curvature       = terms.curvature;
+    double   &slope_magnitude = terms.slope_magnitude;
     curvature += Interval::point(2. * quadratic[2]);
     slope_magnitude +=
       std::abs(quadratic[1]) + 2. * std::abs(quadratic[2]) * (std::abs(m) + r);
@@ -456,32 +538,50 @@ namespace estep
                                   const double m,
                                   const double half_width) const
   {
-    // The per-cell ranges of the volumetric part, chunk by chunk (the
-    // interval sum rounds outward).
-    JacobianRanges ranges;
-    LineEnclosure  r{{0., 0.}, {0., 0.}};
-    for (unsigned int begin = 0; begin < n_cells; begin += JacobianRanges::size)
+    // The per-cell ranges of the volumetric part, block by block and in each
+    // chunk by chunk (the interval sum rounds outward).
+    struct Ranges
+    {
+      Interval value, derivative;
+      Ranges &
+      operator+=(const Ranges &other)
       {
-        const unsigned int count =
-          std::min(JacobianRanges::size, n_cells - begin);
-        enclose_cubics(m,
-                       half_width,
-                       c0 + begin,
-                       c1 + begin,
-                       c2 + begin,
-                       c3 + begin,
-                       count,
-                       ranges);
-        const LineEnclosure chunk = body.material().enclose_volumetric_sum(
-          ranges.J_lo,
-          ranges.J_hi,
-          ranges.dJ_lo,
-          ranges.dJ_hi,
-          body.cell_data().volume.data() + begin,
-          count);
-        r.value += chunk.value;
-        r.derivative += chunk.derivative;
+        value += other.value;
+        derivative += other.derivative;
+        return *this;
       }
+    };
+    const Ranges volumetric =
+      sum_over_blocks<Ranges>(n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange cells = block_range(b, n_cells);
+        JacobianRanges   ranges;
+        Ranges           block_sum{{0., 0.}, {0., 0.}};
+        for (unsigned int begin = cells.begin; begin < cells.end;
+             begin += JacobianRanges::size)
+          {
+            const unsigned int count =
+              std::min(JacobianRanges::size, cells.end - begin);
+            enclose_cubics(m,
+                           half_width,
+                           c0 + begin,
+                           c1 + begin,
+                           c2 + begin,
+                           c3 + begin,
+                           count,
+                           ranges);
+            const LineEnclosure chunk = body.material().enclose_volumetric_sum(
+              ranges.J_lo,
+              ranges.J_hi,
+              ranges.dJ_lo,
+              ranges.dJ_hi,
+              body.cell_data().volume.data() + begin,
+              count);
+            block_sum.value += chunk.value;
+            block_sum.derivative += chunk.derivative;
+          }
+        return block_sum;
+      });
+    LineEnclosure  r{volumetric.value, volumetric.derivative};
     const Interval Q =
       quadratic_range(quadratic[0], quadratic[1], quadratic[2], a, b);
     const Interval dQ =
@@ -517,20 +617,28 @@ namespace estep
   {
     if (limit_ready)
       return limit;
-    double best = infinity;
-    for (unsigned int e = 0; e < n_cells; ++e)
-      {
-        if (!(c0[e] >
-              cubic_rounding * cubic_scale(c0[e], c1[e], c2[e], c3[e], 0.)))
-          {
-            best = 0.;
-            break;
-          }
-        best =
-          std::min(best, first_inversion(c0[e], c1[e], c2[e], c3[e], best));
-      }
-    limit       = best;
-    limit_ready = true;
+    // Per block, the first inversion of its cells (each bounded by the
+    // block's earliest so far), then the earliest of the blocks.
+    std::vector<double> first(n_blocks(n_cells));
+    for_each_block(first.size(), [&](const unsigned int b) {
+      const BlockRange cells = block_range(b, n_cells);
+      double           best  = infinity;
+      for (unsigned int e = cells.begin; e < cells.end; ++e)
+        {
+          if (!(c0[e] >
+                cubic_rounding * cubic_scale(c0[e], c1[e], c2[e], c3[e], 0.)))
+            {
+              best = 0.;
+              break;
+            }
+          best =
+            std::min(best, first_inversion(c0[e], c1[e], c2[e], c3[e], best));
+        }
+      first[b] = best;
+    });
+    const double best = *std::min_element(first.begin(), first.end());
+    limit             = best;
+    limit_ready       = true;
     return limit;
   }
 

@@ -15,7 +15,7 @@ namespace estep
   namespace
   {
     /** The first bytes of a checkpoint: the format and its version. */
-    const std::string magic = "estep checkpoint 2\n";
+    const std::string magic = "estep checkpoint 3\n";
 
     /** FNV-1a, 64 bits: enough to notice a damaged file. */
     std::uint64_t
@@ -88,7 +88,7 @@ namespace estep
               const std::string entry = line.substr(4);
               const std::string name  = entry.substr(0, entry.find('='));
               path += name.substr(0, name.find_last_not_of(' ') + 1);
-              if (path != "Output directory" &&
+              if (path != "Output directory" && path != "Threads" &&
                   path != "Time integration/End time" &&
                   path != "Output/Checkpoint interval" &&
                   path != "Output/Checkpoint wall interval")
@@ -97,6 +97,17 @@ namespace estep
             }
         }
       return entries;
+    }
+
+    /** The lines of @p text. */
+    std::vector<std::string>
+    lines_of(const std::string &text)
+    {
+      std::vector<std::string> lines;
+      std::istringstream       in(text);
+      for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+      return lines;
     }
   } // namespace
 
@@ -110,8 +121,13 @@ namespace estep
     const TimeIntegrator                              &integrator,
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
   {
+    // The entries that fix the trajectory (so that runs that differ only in
+    // the others, such as the threads, leave the same bytes).
+    std::string fixed;
+    for (const std::string &entry : fixed_entries(parameters))
+      fixed += entry + "\n";
     StateWriter payload;
-    payload.put(parameters);
+    payload.put(fixed);
     {
       StateWriter part;
       loop.save(part);
@@ -195,7 +211,7 @@ namespace estep
   void
   Checkpoint::check_parameters(const std::string &current) const
   {
-    const std::vector<std::string> then = fixed_entries(parameters),
+    const std::vector<std::string> then = lines_of(parameters),
                                    now  = fixed_entries(current);
     for (std::size_t i = 0; i < std::max(then.size(), now.size()); ++i)
       if (i >= then.size() || i >= now.size() || then[i] != now[i])
@@ -207,8 +223,8 @@ namespace estep
             differing.substr(0, differing.find(" =")) +
             (i < then.size() ? ", then" + then[i].substr(then[i].find(" =")) :
                                "") +
-            "); only the end time, the checkpoint entries and the output "
-            "directory may change.");
+            "); only the end time, the checkpoint entries, the threads and "
+            "the output directory may change.");
         }
   }
 

@@ -1,4 +1,5 @@
 #include <estep/base/config.h>
+#include <estep/base/parallel_blocks.h>
 #include <estep/io/run_summary.h>
 
 #include <sys/resource.h>
@@ -75,6 +76,7 @@ namespace estep
       .add("degrees of freedom", system.n_dofs())
       .add("final time", result.final_time)
       .add("wall seconds", result.wall_seconds)
+      .add("threads", thread_count())
       .add("peak memory [MiB]", peak_memory_mib());
 
     JsonObject counters;

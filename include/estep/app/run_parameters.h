@@ -30,11 +30,13 @@ namespace estep
     parse_parameters(dealii::ParameterHandler &prm);
 
     std::string output_directory;
-    double      start_time;
-    double      end_time;
-    double      blowup_factor;
-    double      energy_drift_warning;
-    double      history_interval;
+    /** Threads of the cell loops (0: one per core). */
+    unsigned int threads;
+    double       start_time;
+    double       end_time;
+    double       blowup_factor;
+    double       energy_drift_warning;
+    double       history_interval;
     /** Checkpoints every this much simulated time (0: none) and every this
      * many seconds of wall time (0: none). */
     double checkpoint_interval;

@@ -46,7 +46,9 @@ namespace estep
    * gradient() and free_flight() then loop over plain arrays and never call
    * deal.II.
    *
-   * Not thread-safe: energy() uses an internal scratch array.
+   * Its loops over cells run on the threads of thread_count() (see
+   * parallel_blocks.h) and give the same bits on any number of them. Not
+   * thread-safe itself: energy() and gradient() use internal scratch arrays.
    */
   class ElasticBody : public MechanicalSystem, public ElasticBodies
   {
@@ -215,9 +217,24 @@ namespace estep
     Vector                          inv_mass;
     /** Scratch of energy(): J per cell. */
     mutable std::vector<double> scratch_J;
-    /** Positions and forces with one padding entry (the lane kernels read
-     * and write four doubles per point). */
+    /** Positions with one padding entry (the lane kernels read four doubles
+     * per point); forces, the same, or on several threads the forces of each
+     * cell (see gradient()). */
     mutable std::vector<double> scratch_positions, scratch_forces;
+    /**
+     * For each point, where the forces the cells exert on it lie in the
+     * array of cell forces, in the order in which the serial gradient adds
+     * them: those of point p are offset[start[p]], ..., offset[start[p + 1]
+     * - 1]. Built on the first gradient on several threads.
+     */
+    struct PointForces
+    {
+      PointForces() = default;
+      explicit PointForces(const P1CellData &data);
+      std::vector<unsigned int> start;
+      std::vector<std::size_t>  offset;
+    };
+    mutable PointForces point_forces;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };

@@ -14,8 +14,9 @@ namespace estep
   inline const std::string checkpoint_file_name = "checkpoint.bin";
 
   /**
-   * Write the whole state of a run to @p file: the parameters it runs with
-   * (@p parameters, as printed), the time loop's state, the integrator's and
+   * Write the whole state of a run to @p file: the entries of the parameters
+   * it runs with (@p parameters, as printed) that fix its trajectory (all but
+   * those a resume may change), the time loop's state, the integrator's and
    * every postprocessor's. The bytes go to a temporary file, which is
    * flushed to the disk and then renamed over @p file: a kill at any instant
    * leaves either the previous checkpoint or this one, whole. Throws
@@ -42,8 +43,8 @@ namespace estep
     /**
      * Throws std::runtime_error naming the first entry in which @p parameters
      * (as printed) differ from the checkpoint's. Only the end time, the
-     * checkpoint entries and the output directory (moved with its
-     * checkpoint) may change on a resume.
+     * checkpoint entries, the threads and the output directory (moved with
+     * its checkpoint) may change on a resume.
      */
     void
     check_parameters(const std::string &parameters) const;
@@ -59,7 +60,8 @@ namespace estep
       const std::vector<std::unique_ptr<Postprocessor>> &postprocessors) const;
 
   private:
-    std::string              file;
+    std::string file;
+    /** The fixed entries, one "Section/Entry = value" per line. */
     std::string              parameters;
     std::string              loop_state, integrator_state;
     std::vector<std::string> postprocessor_states;

@@ -16,6 +16,15 @@ namespace estep
     double value;
     /** f'(s) = grad V(q + s v) . v. */
     double derivative;
+
+    /** The line value of a sum of energies. */
+    LineValue &
+    operator+=(const LineValue &other)
+    {
+      value += other.value;
+      derivative += other.derivative;
+      return *this;
+    }
   };
 
   /**
