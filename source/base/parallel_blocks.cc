@@ -23,7 +23,7 @@ namespace estep
 
 
   void
-  for_each_block(const unsigned int                        n_blocks,
+  for_each_block(const unsigned int                       n_blocks,
                  const std::function<void(unsigned int)> &work)
   {
     if (n_blocks <= 1 || thread_count() == 1)

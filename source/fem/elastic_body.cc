@@ -171,6 +171,7 @@ namespace estep
           inv_mass[3 * i + c] = 1. / data.lumped_mass[i];
       }
     scratch_J.resize(n_padded);
+    scratch_positions.resize(3 * data.n_points + 1);
   }
 
   ElasticBody::~ElasticBody() = default;
@@ -318,7 +319,7 @@ namespace estep
   ElasticBody::energy(const Vector &q) const
   {
     AssertDimension(q.size(), n_dofs());
-    internal::copy_padded(q.data(), q.size(), scratch_positions);
+    internal::copy_padded(q.data(), q.size(), scratch_positions.data());
     // Per block: the volumetric energy and the sum of |Omega_e| (|F_e|^2 - 3).
     struct Terms
     {
@@ -358,7 +359,7 @@ namespace estep
   ElasticBody::gradient(const Vector &q, Vector &g) const
   {
     AssertDimension(q.size(), n_dofs());
-    internal::copy_padded(q.data(), q.size(), scratch_positions);
+    internal::copy_padded(q.data(), q.size(), scratch_positions.data());
     const unsigned int n_padded = data.n_padded_cells();
     g.reinit(n_dofs(), true);
     if (thread_count() == 1 || n_blocks(n_padded) == 1)
@@ -390,15 +391,19 @@ namespace estep
     for_each_block(n_blocks(data.n_points), [&](const unsigned int b) {
       const BlockRange points = block_range(b, data.n_points);
       for (unsigned int p = points.begin; p < points.end; ++p)
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            double sum = 0.;
-            for (unsigned int k = point_forces.start[p];
-                 k < point_forces.start[p + 1];
-                 ++k)
-              sum += scratch_forces[point_forces.offset[k] + 4 * i];
-            g[3 * p + i] = sum;
-          }
+        {
+          double sum[3] = {0., 0., 0.};
+          for (unsigned int k = point_forces.start[p];
+               k < point_forces.start[p + 1];
+               ++k)
+            {
+              const double *force = &scratch_forces[point_forces.offset[k]];
+              for (unsigned int i = 0; i < 3; ++i)
+                sum[i] += force[4 * i];
+            }
+          for (unsigned int i = 0; i < 3; ++i)
+            g[3 * p + i] = sum[i];
+        }
     });
   }
 

@@ -265,14 +265,17 @@ namespace estep
     c2      = c1 + n_padded;
     c3      = c2 + n_padded;
     scratch = c3 + n_padded;
-    std::vector<double> padded_q, padded_v;
+    // Not value-initialised either (copy_padded() writes every entry).
+    const std::unique_ptr<double[]> padded(new double[2 * (q.size() + 1)]);
+    double *const padded_q = padded.get(), *const padded_v =
+                                             padded_q + q.size() + 1;
     internal::copy_padded(q.data(), q.size(), padded_q);
     internal::copy_padded(v.data(), v.size(), padded_v);
     const QuadraticSums sums = sum_over_blocks<QuadraticSums>(
       n_blocks(n_padded), [&](const unsigned int b) {
         return build_cubics(body.cell_data(),
-                            padded_q.data(),
-                            padded_v.data(),
+                            padded_q,
+                            padded_v,
                             block_range(b, n_padded),
                             c0,
                             c1,

@@ -4,6 +4,7 @@
 // Private inline kernels of the P1 elastic body (not installed).
 
 #include <estep/base/lanes.h>
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/p1_cell_data.h>
 
 #include <algorithm>
@@ -67,14 +68,17 @@ namespace estep
     }
 
     /**
-     * A copy of point-major values with one more entry (zero) at the end, for
-     * the lane kernels' loads of four doubles per point.
+     * Copy the @p n point-major values @p x to @p copy, which holds n + 1, and
+     * set the last to zero: the lane kernels load four doubles per point. In
+     * parallel blocks.
      */
     inline void
-    copy_padded(const double *x, const std::size_t n, std::vector<double> &copy)
+    copy_padded(const double *x, const unsigned int n, double *copy)
     {
-      copy.resize(n + 1);
-      std::copy(x, x + n, copy.begin());
+      for_each_block(n_blocks(n), [&](const unsigned int b) {
+        const BlockRange range = block_range(b, n);
+        std::copy(x + range.begin, x + range.end, copy + range.begin);
+      });
       copy[n] = 0.;
     }
 

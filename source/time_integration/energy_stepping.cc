@@ -1,8 +1,10 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/integrator_registry.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -234,10 +236,17 @@ namespace estep
     else
       departure = Departure::interior;
 
-    for (const double x : v)
-      if (!std::isfinite(x))
-        throw UnstableRun(
-          "The velocity became non-finite at t = " + std::to_string(t) + ".");
+    const unsigned int finite_blocks = sum_over_blocks<unsigned int>(
+      n_blocks(v.size()), [&](const unsigned int b) {
+        const BlockRange dofs = block_range(b, v.size());
+        return unsigned(
+          std::all_of(v.begin() + dofs.begin,
+                      v.begin() + dofs.end,
+                      [](const double x) { return std::isfinite(x); }));
+      });
+    if (finite_blocks < n_blocks(v.size()))
+      throw UnstableRun(
+        "The velocity became non-finite at t = " + std::to_string(t) + ".");
   }
 
 
@@ -247,13 +256,7 @@ namespace estep
   {
     system.gradient(q, gradient_buffer);
     ++n_gradients;
-    const Vector &inverse_mass = system.inverse_mass();
-    double        a = 0., m = 0.;
-    for (unsigned int i = 0; i < q.size(); ++i)
-      {
-        a += gradient_buffer[i] * v[i];
-        m += gradient_buffer[i] * gradient_buffer[i] * inverse_mass[i];
-      }
+    const auto [a, m] = slope_and_mass_norm(gradient_buffer);
 
     double lambda = 0.;
     if (direction > 0)
@@ -293,8 +296,7 @@ namespace estep
         departure = Departure::from_upper_level;
       }
 
-    for (unsigned int i = 0; i < v.size(); ++i)
-      v[i] += lambda * inverse_mass[i] * gradient_buffer[i];
+    add_impulse(lambda, gradient_buffer);
   }
 
 
@@ -302,18 +304,56 @@ namespace estep
   void
   EnergyStepping::reflect(const Vector &normal)
   {
-    const Vector &inverse_mass = system.inverse_mass();
-    double        a = 0., m = 0.;
-    for (unsigned int i = 0; i < v.size(); ++i)
-      {
-        a += normal[i] * v[i];
-        m += normal[i] * normal[i] * inverse_mass[i];
-      }
+    const auto [a, m] = slope_and_mass_norm(normal);
     if (m == 0.)
       return;
-    const double lambda = -2. * a / m;
-    for (unsigned int i = 0; i < v.size(); ++i)
-      v[i] += lambda * inverse_mass[i] * normal[i];
+    add_impulse(-2. * a / m, normal);
+  }
+
+
+
+  std::pair<double, double>
+  EnergyStepping::slope_and_mass_norm(const Vector &g) const
+  {
+    // Block by block (of degrees of freedom), the partial sums added in
+    // block order: the same bits on any number of threads.
+    struct Sums
+    {
+      double a, m;
+      Sums &
+      operator+=(const Sums &other)
+      {
+        a += other.a;
+        m += other.m;
+        return *this;
+      }
+    };
+    const Vector &inverse_mass = system.inverse_mass();
+    const Sums    sums =
+      sum_over_blocks<Sums>(n_blocks(v.size()), [&](const unsigned int b) {
+        const BlockRange dofs = block_range(b, v.size());
+        Sums             block{0., 0.};
+        for (unsigned int i = dofs.begin; i < dofs.end; ++i)
+          {
+            block.a += g[i] * v[i];
+            block.m += g[i] * g[i] * inverse_mass[i];
+          }
+        return block;
+      });
+    return {sums.a, sums.m};
+  }
+
+
+
+  void
+  EnergyStepping::add_impulse(const double lambda, const Vector &g)
+  {
+    const Vector &inverse_mass = system.inverse_mass();
+    for_each_block(n_blocks(v.size()), [&](const unsigned int b) {
+      const BlockRange dofs = block_range(b, v.size());
+      for (unsigned int i = dofs.begin; i < dofs.end; ++i)
+        v[i] += lambda * inverse_mass[i] * g[i];
+    });
   }
 
 

@@ -59,7 +59,7 @@ namespace estep
    * thrown again here.
    */
   void
-  for_each_block(const unsigned int                        n_blocks,
+  for_each_block(const unsigned int                       n_blocks,
                  const std::function<void(unsigned int)> &work);
 
   /**

@@ -6,6 +6,7 @@
 #include <estep/time_integration/time_integrator.h>
 
 #include <optional>
+#include <utility>
 
 namespace estep
 {
@@ -157,6 +158,15 @@ namespace estep
     /** Reflect the velocity on a constraint @p normal. */
     void
     reflect(const Vector &normal);
+
+    /** a = g . v and m = g . M^-1 g, summed over fixed blocks of degrees of
+     * freedom in block order. */
+    std::pair<double, double>
+    slope_and_mass_norm(const Vector &g) const;
+
+    /** v += lambda M^-1 g. */
+    void
+    add_impulse(const double lambda, const Vector &g);
 
     const double h;
     const double c;

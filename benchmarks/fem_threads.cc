@@ -1,0 +1,123 @@
+// Energy-stepping on several threads: the centred spinning cube (h = 1e-5)
+// at 1,536, 12,288, 98,304 and 786,432 cells, each run on 1 thread and on
+// every thread of the machine (or the number given), in one run of this
+// program. Printed per size: the steps, the wall time per step and per step
+// and cell on each thread count, their ratio (the speedup), and whether the
+// two runs ended in the same state to the last bit.
+//
+// Usage: build/benchmarks/benchmark_fem_threads [threads, default: all cores]
+//        [largest subdivision, default 32] [end time of the 98,304-cell
+//        run, default 1]
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/grid/tria.h>
+
+#include <estep/base/parallel_blocks.h>
+#include <estep/fem/elastic_body.h>
+#include <estep/fem/meshes.h>
+#include <estep/materials/neo_hookean.h>
+#include <estep/time_integration/energy_stepping.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+namespace
+{
+  struct Run
+  {
+    double        seconds;
+    unsigned int  steps;
+    double        time;
+    estep::Vector q, v;
+  };
+
+  /** Energy-stepping of @p body from the centred rotation to @p end_time or
+   * @p max_steps steps, whichever comes first, on @p threads threads. */
+  Run
+  run(const estep::ElasticBody &body,
+      const unsigned int        threads,
+      const double              end_time,
+      const unsigned int        max_steps)
+  {
+    estep::set_thread_count(threads);
+    const estep::Vector   q = body.reference_configuration();
+    const estep::Vector   v = body.rigid_velocity(q,
+                                                {{0., 0., 0.}},
+                                                {{0., 0., 1.}},
+                                                {{0.5, 0.5, 0.5}});
+    estep::EnergyStepping stepping(body, 1e-5);
+    stepping.initialize(0., q, v);
+    const auto start = std::chrono::steady_clock::now();
+    while (stepping.time() < end_time && stepping.n_steps() < max_steps)
+      stepping.step(end_time);
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+        .count();
+    return {seconds,
+            static_cast<unsigned int>(stepping.n_steps()),
+            stepping.time(),
+            stepping.position(),
+            stepping.velocity()};
+  }
+
+  bool
+  same_bits(const estep::Vector &a, const estep::Vector &b)
+  {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  const unsigned int threads =
+    argc > 1 ? std::atoi(argv[1]) : dealii::MultithreadInfo::n_cores();
+  const unsigned int largest  = argc > 2 ? std::atoi(argv[2]) : 32;
+  const double       end_time = argc > 3 ? std::atof(argv[3]) : 1.;
+  std::printf("energy-stepping, centred spinning cube, h = 1e-5; 1 against "
+              "%u threads\n",
+              threads);
+  std::printf("%9s %6s %7s %13s %13s %15s %15s %8s %9s\n",
+              "cells",
+              "steps",
+              "t",
+              "1: s/step",
+              "N: s/step",
+              "1: ns/step/cell",
+              "N: ns/step/cell",
+              "speedup",
+              "same bits");
+  for (unsigned int n = 4; n <= largest; n *= 2)
+    {
+      dealii::Triangulation<3> tria;
+      estep::make_seed_cube_mesh(tria, n);
+      const estep::ElasticBody body(tria,
+                                    std::make_shared<estep::NeoHookean>(0.0100,
+                                                                        0.0066),
+                                    0.100,
+                                    "cube");
+      // To the end time, the largest cube (786,432 cells) for 40 steps.
+      const unsigned int max_steps = n > 16 ? 40 : 1000000;
+      const Run          serial    = run(body, 1, end_time, max_steps);
+      const Run          parallel  = run(body, threads, end_time, max_steps);
+      const double       cells     = body.n_cells();
+      std::printf("%9.0f %6u %7.3g %13.3e %13.3e %15.1f %15.1f %8.2f %9s\n",
+                  cells,
+                  serial.steps,
+                  serial.time,
+                  serial.seconds / serial.steps,
+                  parallel.seconds / parallel.steps,
+                  1e9 * serial.seconds / serial.steps / cells,
+                  1e9 * parallel.seconds / parallel.steps / cells,
+                  serial.seconds / parallel.seconds,
+                  serial.steps == parallel.steps &&
+                      same_bits(serial.q, parallel.q) &&
+                      same_bits(serial.v, parallel.v) ?
+                    "yes" :
+                    "NO");
+    }
+  return 0;
+}
