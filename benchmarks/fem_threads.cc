@@ -42,11 +42,9 @@ namespace
       const unsigned int        max_steps)
   {
     estep::set_thread_count(threads);
-    const estep::Vector   q = body.reference_configuration();
-    const estep::Vector   v = body.rigid_velocity(q,
-                                                {{0., 0., 0.}},
-                                                {{0., 0., 1.}},
-                                                {{0.5, 0.5, 0.5}});
+    const estep::Vector q = body.reference_configuration();
+    const estep::Vector v =
+      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, {{0.5, 0.5, 0.5}});
     estep::EnergyStepping stepping(body, 1e-5);
     stepping.initialize(0., q, v);
     const auto start = std::chrono::steady_clock::now();

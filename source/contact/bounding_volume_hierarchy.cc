@@ -1,3 +1,4 @@
+#include <estep/base/parallel_blocks.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
 
 #include <algorithm>
@@ -362,6 +363,57 @@ namespace estep
 
 
 
+    namespace
+    {
+      using NodePair = std::pair<unsigned int, unsigned int>;
+
+      /** The node pairs a descent starts from before it splits into tasks. */
+      constexpr std::size_t descent_tasks = 64;
+
+      /**
+       * A simultaneous descent of two trees from the node pair @p root:
+       * @p visit(node pair, next, pairs) handles one node pair, adding the
+       * triangle pairs it finds to pairs and the node pairs to descend into
+       * to next. The node pairs are first visited breadth first until
+       * descent_tasks of them wait (or none); each of those then starts a
+       * depth-first descent, on the threads, into its own list; the lists are
+       * appended in turn. The order of the pairs so depends on the trees
+       * alone, not on the number of threads.
+       */
+      template <typename Visit>
+      void
+      descend(const NodePair                                     &root,
+              const Visit                                        &visit,
+              std::vector<std::pair<unsigned int, unsigned int>> &pairs)
+      {
+        std::vector<NodePair> waiting{root}, next;
+        std::size_t           first = 0;
+        while (first < waiting.size() && waiting.size() - first < descent_tasks)
+          {
+            next.clear();
+            visit(waiting[first++], next, pairs);
+            waiting.insert(waiting.end(), next.begin(), next.end());
+          }
+        const unsigned int n_tasks = waiting.size() - first;
+        std::vector<std::vector<std::pair<unsigned int, unsigned int>>> found(
+          n_tasks);
+        for_each_block(n_tasks, [&](const unsigned int task) {
+          std::vector<NodePair> stack{waiting[first + task]};
+          stack.reserve(128);
+          while (!stack.empty())
+            {
+              const NodePair pair = stack.back();
+              stack.pop_back();
+              visit(pair, stack, found[task]);
+            }
+        });
+        for (const auto &task_pairs : found)
+          pairs.insert(pairs.end(), task_pairs.begin(), task_pairs.end());
+      }
+    } // namespace
+
+
+
     void
     BoundingVolumeHierarchy::find_pairs(
       std::vector<std::pair<unsigned int, unsigned int>> &pairs) const
@@ -369,23 +421,21 @@ namespace estep
       pairs.clear();
       if (nodes.empty())
         return;
-      // a, b: positions in tree order.
-      const auto test = [&](const unsigned int a, const unsigned int b) {
-        if (overlap(ordered_boxes[a], ordered_boxes[b]) &
-            !share_index(ordered_triangles[a], ordered_triangles[b]))
-          pairs.emplace_back(std::min(order[a], order[b]),
-                             std::max(order[a], order[b]));
-      };
-      // Simultaneous descent of the tree against itself: a node against itself
-      // gives its children against themselves and against each other; other
-      // pairs of nodes are only pushed if their boxes overlap.
-      std::vector<std::pair<unsigned int, unsigned int>> stack;
-      stack.reserve(128);
-      stack.emplace_back(0, 0);
-      while (!stack.empty())
-        {
-          const auto [a, b] = stack.back();
-          stack.pop_back();
+      // Simultaneous descent of the tree against itself (a, b: nodes; i, j:
+      // positions in tree order): a node against itself gives its children
+      // against themselves and against each other; other pairs of nodes are
+      // only descended into if their boxes overlap.
+      const auto visit =
+        [&](const NodePair                                     &ab,
+            std::vector<NodePair>                              &next,
+            std::vector<std::pair<unsigned int, unsigned int>> &found) {
+          const auto test = [&](const unsigned int i, const unsigned int j) {
+            if (overlap(ordered_boxes[i], ordered_boxes[j]) &
+                !share_index(ordered_triangles[i], ordered_triangles[j]))
+              found.emplace_back(std::min(order[i], order[j]),
+                                 std::max(order[i], order[j]));
+          };
+          const auto [a, b] = ab;
           const Node &A = nodes[a], &B = nodes[b];
           const bool  a_leaf = A.first_child == 0, b_leaf = B.first_child == 0;
           if (a == b)
@@ -399,10 +449,10 @@ namespace estep
               else
                 {
                   const unsigned int c = A.first_child;
-                  stack.emplace_back(c, c);
-                  stack.emplace_back(c + 1, c + 1);
+                  next.emplace_back(c, c);
+                  next.emplace_back(c + 1, c + 1);
                   if (overlap(nodes[c].box, nodes[c + 1].box))
-                    stack.emplace_back(c, c + 1);
+                    next.emplace_back(c, c + 1);
                 }
             }
           else if (a_leaf && b_leaf)
@@ -416,15 +466,16 @@ namespace estep
             {
               for (const unsigned int c : {A.first_child, A.first_child + 1})
                 if (overlap(nodes[c].box, B.box))
-                  stack.emplace_back(c, b);
+                  next.emplace_back(c, b);
             }
           else
             {
               for (const unsigned int c : {B.first_child, B.first_child + 1})
                 if (overlap(A.box, nodes[c].box))
-                  stack.emplace_back(a, c);
+                  next.emplace_back(a, c);
             }
-        }
+        };
+      descend({0, 0}, visit, pairs);
     }
 
 
@@ -436,19 +487,17 @@ namespace estep
       const SharedVertices                                shared) const
     {
       pairs.clear();
-      if (nodes.empty() || other.nodes.empty())
+      if (nodes.empty() || other.nodes.empty() ||
+          !overlap(nodes[0].box, other.nodes[0].box))
         return;
       const bool skip_shared = (shared == SharedVertices::excluded);
       // Simultaneous descent: a pair of nodes (a of this tree, b of other's)
       // is only visited if their boxes overlap; the larger one is split.
-      std::vector<std::pair<unsigned int, unsigned int>> stack;
-      stack.reserve(128);
-      if (overlap(nodes[0].box, other.nodes[0].box))
-        stack.emplace_back(0, 0);
-      while (!stack.empty())
-        {
-          const auto [a, b] = stack.back();
-          stack.pop_back();
+      const auto visit =
+        [&](const NodePair                                     &ab,
+            std::vector<NodePair>                              &next,
+            std::vector<std::pair<unsigned int, unsigned int>> &found) {
+          const auto [a, b] = ab;
           const Node &A = nodes[a], &B = other.nodes[b];
           const bool  a_leaf = A.first_child == 0, b_leaf = B.first_child == 0;
           if (a_leaf && b_leaf)
@@ -460,21 +509,22 @@ namespace estep
                         !(skip_shared &
                           share_index(ordered_triangles[i],
                                       other.ordered_triangles[j])))
-                      pairs.emplace_back(order[i], other.order[j]);
+                      found.emplace_back(order[i], other.order[j]);
             }
           else if (b_leaf || (!a_leaf && A.end - A.begin >= B.end - B.begin))
             {
               for (const unsigned int c : {A.first_child, A.first_child + 1})
                 if (overlap(nodes[c].box, B.box))
-                  stack.emplace_back(c, b);
+                  next.emplace_back(c, b);
             }
           else
             {
               for (const unsigned int c : {B.first_child, B.first_child + 1})
                 if (overlap(A.box, other.nodes[c].box))
-                  stack.emplace_back(a, c);
+                  next.emplace_back(a, c);
             }
-        }
+        };
+      descend({0, 0}, visit, pairs);
     }
   } // namespace contact
 } // namespace estep

@@ -113,8 +113,9 @@ namespace estep
 
       /**
        * All pairs (i, j), i < j, of triangle numbers whose boxes overlap and
-       * which share no vertex index. Replaces the content of @p pairs; the
-       * order is unspecified.
+       * which share no vertex index. Replaces the content of @p pairs; their
+       * order depends on the tree alone, not on the number of threads (the
+       * descent splits into tasks at a fixed frontier).
        */
       void
       find_pairs(
@@ -130,7 +131,8 @@ namespace estep
        * with SharedVertices::included (each body has its own coordinate
        * vector) they are kept. Both hierarchies must be built (with the
        * boxes, margins and sweeps wanted; boxes are compared as they are).
-       * Replaces the content of @p pairs; the order is unspecified. @p other
+       * Replaces the content of @p pairs; their order depends on the trees
+       * alone, as in find_pairs(). @p other
        * may be this hierarchy: then every unordered overlapping pair is found
        * in both orders, plus (i, i) if shared vertices are included.
        */
