@@ -27,6 +27,7 @@
 #include <cctype>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -85,6 +86,24 @@ namespace estep
           << postprocessor_registry().names(", ")
           << "\nestep --print-parameters documents each of them; "
              "'Additional shared libraries' adds your own.\n";
+    }
+
+    /** The number of processes an MPI launcher (Open MPI's or MPICH's
+     * mpirun) started this one among, from its environment (1 without a
+     * launcher), and this one's rank among them. */
+    std::pair<unsigned int, unsigned int>
+    launched_ranks()
+    {
+      for (const auto &[size, rank] :
+           {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+            std::pair{"PMI_SIZE", "PMI_RANK"}})
+        if (const char *n = std::getenv(size))
+          {
+            const char *r = std::getenv(rank);
+            return {std::max(1, std::atoi(n)),
+                    r != nullptr ? std::max(0, std::atoi(r)) : 0};
+          }
+      return {1, 0};
     }
 
     /** What the command line asks for. */
@@ -714,6 +733,17 @@ namespace estep
           throw std::runtime_error(
             "No input file given. Usage: estep [options] INPUT.prm "
             "(see estep --help).");
+        if (const auto [ranks, rank] = launched_ranks(); ranks > 1)
+          {
+            if (rank > 0) // The first process says why.
+              return exit_input_error;
+            throw std::runtime_error(
+              "estep was started as " + std::to_string(ranks) +
+              " MPI processes, but it does not distribute a run over "
+              "processes: they would all run the whole problem into the same "
+              "output directory. Start one process; it uses every core "
+              "(--threads).");
+          }
         const int code = run(command);
         finish_mpi();
         return code;
