@@ -15,8 +15,7 @@ main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const unsigned int calls = argc > 1 ? std::atoi(argv[1]) : 100000;
-  const int          ranks = dealii::Utilities::MPI::n_mpi_processes(
-    MPI_COMM_WORLD);
+  const int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   for (const int n : {1, 4, 16})
     {
       double local[16], global[16];

@@ -1,3 +1,4 @@
+#include <estep/base/parallel_blocks.h>
 #include <estep/contact/penalty_contact.h>
 
 #include <algorithm>
@@ -232,33 +233,59 @@ namespace estep
       double                                                   *derivative,
       unsigned int                                             *count) const
     {
-      const auto &tris  = get_triangles();
-      double      total = 0., slope = 0.;
-      Triangle3   T[2];
-      for (const auto &[i, j] : pairs)
+      // Blocks of pairs (a fixed number each) on the threads, their sums
+      // added in block order.
+      struct Sums
+      {
+        double       total, slope;
+        unsigned int count;
+        Sums &
+        operator+=(const Sums &other)
         {
-          const TriangleIndices *t[2] = {&tris[i], &tris[j]};
-          for (unsigned int m = 0; m < 2; ++m)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const unsigned int index = 3 * (*t[m])[a] + k;
-                  T[m][a][k]               = q[index] + s * v[index];
-                }
-          std::array<double, 18> grad;
-          const double           gap = squared_intersection_length(
-            T[0], T[1], derivative != nullptr ? &grad : nullptr);
-          if (gap == 0.)
-            continue;
-          total += gap;
-          if (count != nullptr)
-            ++*count;
-          if (derivative != nullptr)
-            for (unsigned int m = 0; m < 2; ++m)
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int k = 0; k < 3; ++k)
-                  slope += grad[9 * m + 3 * a + k] * v[3 * (*t[m])[a] + k];
+          total += other.total;
+          slope += other.slope;
+          count += other.count;
+          return *this;
         }
+      };
+      const auto &tris = get_triangles();
+      const Sums  sums = sum_over_blocks<Sums>(
+        std::max(1u, n_blocks(pairs.size(), pairs_per_block)),
+        [&](const unsigned int b) {
+          const BlockRange block =
+            block_range(b, pairs.size(), pairs_per_block);
+          Sums      sums{0., 0., 0};
+          Triangle3 T[2];
+          for (unsigned int k = block.begin; k < block.end; ++k)
+            {
+              const auto [i, j]           = pairs[k];
+              const TriangleIndices *t[2] = {&tris[i], &tris[j]};
+              for (unsigned int m = 0; m < 2; ++m)
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      const unsigned int index = 3 * (*t[m])[a] + c;
+                      T[m][a][c]               = q[index] + s * v[index];
+                    }
+              std::array<double, 18> grad;
+              const double           gap = squared_intersection_length(
+                T[0], T[1], derivative != nullptr ? &grad : nullptr);
+              if (gap == 0.)
+                continue;
+              sums.total += gap;
+              ++sums.count;
+              if (derivative != nullptr)
+                for (unsigned int m = 0; m < 2; ++m)
+                  for (unsigned int a = 0; a < 3; ++a)
+                    for (unsigned int c = 0; c < 3; ++c)
+                      sums.slope +=
+                        grad[9 * m + 3 * a + c] * v[3 * (*t[m])[a] + c];
+            }
+          return sums;
+        });
+      const double total = sums.total, slope = sums.slope;
+      if (count != nullptr)
+        *count += sums.count;
       const double scale = 1. / (2. * eps);
       if (derivative != nullptr)
         *derivative = slope * scale;

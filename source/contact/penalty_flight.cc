@@ -1,3 +1,4 @@
+#include <estep/base/parallel_blocks.h>
 #include <estep/contact/penalty_flight.h>
 
 #include <algorithm>
@@ -733,22 +734,30 @@ namespace estep
       if (!(a <= b))
         throw std::invalid_argument("PenaltyFlight::taylor_form: a > b");
       update_candidates(a, b);
-      LineTaylorForm sum  = LineTaylorForm::about_centre_of(a, b);
-      const auto    &tris = contact.get_triangles();
-      double         x[2][9], w[2][9];
-      for (const auto &[i, j] : pairs)
-        {
-          const TriangleIndices *t[2] = {&tris[i], &tris[j]};
-          for (unsigned int m = 0; m < 2; ++m)
-            for (unsigned int p = 0; p < 3; ++p)
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  x[m][3 * p + k] = q[3 * (*t[m])[p] + k];
-                  w[m][3 * p + k] = v[3 * (*t[m])[p] + k];
-                }
-          sum += squared_intersection_length_form(
-            x[0], w[0], x[1], w[1], sum.centre, sum.radius);
-        }
+      const LineTaylorForm about = LineTaylorForm::about_centre_of(a, b);
+      const auto          &tris  = contact.get_triangles();
+      const unsigned int   size  = PenaltyContact::pairs_per_block;
+      const LineTaylorForm sum   = sum_over_blocks<LineTaylorForm>(
+        std::max(1u, n_blocks(pairs.size(), size)), [&](const unsigned int b) {
+          const BlockRange block = block_range(b, pairs.size(), size);
+          LineTaylorForm   form  = about;
+          double           x[2][9], w[2][9];
+          for (unsigned int k = block.begin; k < block.end; ++k)
+            {
+              const auto [i, j]           = pairs[k];
+              const TriangleIndices *t[2] = {&tris[i], &tris[j]};
+              for (unsigned int m = 0; m < 2; ++m)
+                for (unsigned int p = 0; p < 3; ++p)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      x[m][3 * p + c] = q[3 * (*t[m])[p] + c];
+                      w[m][3 * p + c] = v[3 * (*t[m])[p] + c];
+                    }
+              form += squared_intersection_length_form(
+                x[0], w[0], x[1], w[1], form.centre, form.radius);
+            }
+          return form;
+        });
       return sum.scaled(1. / (2. * contact.get_eps()));
     }
 

@@ -20,11 +20,11 @@ namespace estep
    * cell kernels (128 and 256 cells), large enough to be worth a task. */
   constexpr unsigned int block_size = 1024;
 
-  /** The number of blocks of @p n items. */
+  /** The number of blocks of @p n items, @p size per block. */
   constexpr unsigned int
-  n_blocks(const unsigned int n)
+  n_blocks(const unsigned int n, const unsigned int size = block_size)
   {
-    return (n + block_size - 1) / block_size;
+    return (n + size - 1) / size;
   }
 
   /** The items [begin, end) of a block. */
@@ -33,12 +33,13 @@ namespace estep
     unsigned int begin, end;
   };
 
-  /** The items of block @p b of @p n items. */
+  /** The items of block @p b of @p n items, @p size per block. */
   constexpr BlockRange
-  block_range(const unsigned int b, const unsigned int n)
+  block_range(const unsigned int b,
+              const unsigned int n,
+              const unsigned int size = block_size)
   {
-    return {b * block_size,
-            (b + 1) * block_size < n ? (b + 1) * block_size : n};
+    return {b * size, (b + 1) * size < n ? (b + 1) * size : n};
   }
 
   /**

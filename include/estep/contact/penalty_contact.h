@@ -161,6 +161,10 @@ namespace estep
         std::vector<std::pair<unsigned int, unsigned int>> pairs;
       };
 
+      /** The sums over candidate pairs run on the threads in blocks of
+       * this many pairs, added in block order (see parallel_blocks.h). */
+      static constexpr unsigned int pairs_per_block = 64;
+
       /**
        * I(q + s v) summed over the candidate @p pairs only; dI/ds into
        * @p derivative and the number of intersecting pairs into @p count
