@@ -303,26 +303,39 @@ namespace estep
     return 64. * unit * gross_magnitude;
   }
 
-  double
-  ElasticFreeFlight::value(const double s) const
+  LineValue
+  ElasticFreeFlight::volumetric_part(const double s, const bool slope) const
   {
-    const double volumetric =
-      sum_over_blocks<double>(n_blocks(n_cells), [&](const unsigned int b) {
-        const BlockRange cells = block_range(b, n_cells);
-        double          *J     = scratch + cells.begin;
+    const unsigned int n_padded = body.cell_data().n_padded_cells();
+    return sum_over_blocks<LineValue>(
+      n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange   cells = block_range(b, n_cells);
+        const unsigned int count = cells.end - cells.begin;
+        double            *J     = scratch + cells.begin;
+        double            *dJ    = slope ? J + n_padded : nullptr;
+        const double *volume     = body.cell_data().volume.data() + cells.begin;
         evaluate_cubics(s,
                         c0 + cells.begin,
                         c1 + cells.begin,
                         c2 + cells.begin,
                         c3 + cells.begin,
-                        cells.end - cells.begin,
+                        count,
                         J,
-                        nullptr);
-        return body.material().sum_volumetric_energy(
-          J,
-          body.cell_data().volume.data() + cells.begin,
-          cells.end - cells.begin);
+                        dJ);
+        if (slope)
+          return body.material().sum_volumetric_energy_and_slope(J,
+                                                                 dJ,
+                                                                 volume,
+                                                                 count);
+        return LineValue{
+          body.material().sum_volumetric_energy(J, volume, count), 0.};
       });
+  }
+
+  double
+  ElasticFreeFlight::value(const double s) const
+  {
+    const double volumetric = volumetric_part(s, false).value;
     if (!std::isfinite(volumetric))
       return infinity;
     return volumetric + (quadratic[0] + s * (quadratic[1] + s * quadratic[2]));
@@ -331,25 +344,7 @@ namespace estep
   LineValue
   ElasticFreeFlight::value_and_derivative(const double s) const
   {
-    const unsigned int n_padded = body.cell_data().n_padded_cells();
-    LineValue          r =
-      sum_over_blocks<LineValue>(n_blocks(n_cells), [&](const unsigned int b) {
-        const BlockRange cells = block_range(b, n_cells);
-        double          *J = scratch + cells.begin, *dJ = J + n_padded;
-        evaluate_cubics(s,
-                        c0 + cells.begin,
-                        c1 + cells.begin,
-                        c2 + cells.begin,
-                        c3 + cells.begin,
-                        cells.end - cells.begin,
-                        J,
-                        dJ);
-        return body.material().sum_volumetric_energy_and_slope(
-          J,
-          dJ,
-          body.cell_data().volume.data() + cells.begin,
-          cells.end - cells.begin);
-      });
+    LineValue r = volumetric_part(s, true);
     if (!std::isfinite(r.value))
       return {infinity, 0.};
     r.value += quadratic[0] + s * (quadratic[1] + s * quadratic[2]);

@@ -78,6 +78,11 @@ namespace estep
     quadratic_part() const;
 
   private:
+    /** The volumetric part of f at @p s, summed over blocks of cells, with
+     * its slope if @p slope (0 otherwise). */
+    LineValue
+    volumetric_part(const double s, const bool slope) const;
+
     /** The second-order (Taylor) form about the centre of @p about (a form
      * of 0 about m, with its radius r), from f and f' at m (@p fm) and the
      * enclosure of f'' over [m - r, m + r]; empty if f'' is unbounded
