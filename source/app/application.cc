@@ -282,21 +282,44 @@ namespace estep
       return "";
     }
 
-    /** Throw if a value of @p tree (parameters as ShortJSON prints them) is
-     * one that parameters.prm could not give back. */
+    /**
+     * Throw, naming the entry, if a value of @p prm does not match its
+     * pattern or is one that parameters.prm could not give back. @p tree:
+     * the entries of the current subsection of @p prm as its JSON print
+     * gives them. deal.II's .prm reader skips the pattern of a value that
+     * holds a '{' (a variant of MultipleParameterLoop), so each value is set
+     * again, which checks it.
+     */
     void
-    check_prm_values(const boost::property_tree::ptree &tree,
-                     const std::string                 &path)
+    check_values(dealii::ParameterHandler          &prm,
+                 const boost::property_tree::ptree &tree,
+                 const std::string                 &path)
     {
       for (const auto &[name, child] : tree)
         {
           const std::string entry = path.empty() ? name : path + "/" + name;
-          if (!child.empty())
-            check_prm_values(child, entry);
-          else if (const std::string obstacle = prm_obstacle(child.data());
-                   !obstacle.empty())
+          const auto        value = child.get_optional<std::string>("value");
+          if (!value)
+            {
+              prm.enter_subsection(name);
+              check_values(prm, child, entry);
+              prm.leave_subsection();
+              continue;
+            }
+          try
+            {
+              prm.set(name, *value);
+            }
+          catch (const std::exception &)
+            {
+              throw std::runtime_error(
+                entry + ": the value <" + *value + "> does not match " +
+                child.get<std::string>("pattern_description") + ".");
+            }
+          if (const std::string obstacle = prm_obstacle(*value);
+              !obstacle.empty())
             throw std::runtime_error(
-              entry + ": the value <" + child.data() + "> holds " + obstacle +
+              entry + ": the value <" + *value + "> holds " + obstacle +
               ", which parameters.prm could not give back.");
         }
     }
@@ -675,10 +698,10 @@ namespace estep
       apply_override(prm, text);
 
     std::stringstream json;
-    prm.print_parameters(json, dealii::ParameterHandler::ShortJSON);
+    prm.print_parameters(json, dealii::ParameterHandler::JSON);
     boost::property_tree::ptree tree;
     boost::property_tree::read_json(json, tree);
-    check_prm_values(tree, "");
+    check_values(prm, tree, "");
   }
 
 

@@ -51,12 +51,13 @@ namespace estep
    * values (e.g. `Number of bodies` sizes a scene's body subsections): the
    * parameters are declared once with their defaults, the input is read
    * leniently, they are declared again with what it set, and the input is
-   * read again, strictly. A value that a .prm file cannot hold (with '#', a
-   * line break or a control character, white space at its ends, a final
-   * backslash: possible from a .json or .xml file or an override) is
-   * rejected, since parameters.prm of a run must read back to the same
-   * parameters. Bad input throws (std::runtime_error or a deal.II exception)
-   * with one message.
+   * read again, strictly. Then every value is checked against its pattern
+   * once more (deal.II's readers do not check a value that holds a '{'), and
+   * a value that a .prm file cannot hold (with '#', a line break or a control
+   * character, white space at its ends, a final backslash: possible from a
+   * .json or .xml file or an override) is rejected, since parameters.prm of a
+   * run must read back to the same parameters. Bad input throws
+   * (std::runtime_error or a deal.II exception) with one message.
    */
   void
   declare_and_read_parameters(dealii::ParameterHandler       &prm,
