@@ -8,7 +8,6 @@
 #include <estep/fem/p1_cell_data.h>
 
 #include <algorithm>
-#include <vector>
 
 namespace estep
 {
