@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/revision.h>
 #include <deal.II/base/utilities.h>
@@ -9,9 +10,10 @@
 #include <estep/app/renamed_entries.h>
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
-#include <estep/base/parallel_blocks.h>
+#include <estep/fem/elastic_body.h>
 #include <estep/io/checkpoint.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
@@ -90,20 +92,44 @@ namespace estep
 
     /** The number of processes an MPI launcher (Open MPI's or MPICH's
      * mpirun) started this one among, from its environment (1 without a
-     * launcher), and this one's rank among them. */
-    std::pair<unsigned int, unsigned int>
-    launched_ranks()
+     * launcher). */
+    unsigned int
+    launched_processes()
     {
-      for (const auto &[size, rank] :
-           {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
-            std::pair{"PMI_SIZE", "PMI_RANK"}})
+      for (const char *size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
         if (const char *n = std::getenv(size))
-          {
-            const char *r = std::getenv(rank);
-            return {std::max(1, std::atoi(n)),
-                    r != nullptr ? std::max(0, std::atoi(r)) : 0};
-          }
-      return {1, 0};
+          return std::max(1, std::atoi(n));
+      return 1;
+    }
+
+    /**
+     * On several MPI ranks, the run shares the cells of its elastic bodies
+     * among them: a system without any, or with fewer cells than ranks, is an
+     * input error.
+     */
+    void
+    check_distribution(const MechanicalSystem &system)
+    {
+      const unsigned int ranks = rank_count();
+      if (ranks == 1)
+        return;
+      const auto *bodies = dynamic_cast<const ElasticBodies *>(&system);
+      if (bodies == nullptr)
+        throw std::runtime_error(
+          "estep was started as " + std::to_string(ranks) +
+          " MPI processes, but the " + system.name() +
+          " has no elastic body whose cells they could share. Run it as "
+          "one process; it uses every core (--threads).");
+      unsigned long long cells = 0;
+      for (unsigned int b = 0; b < bodies->n_bodies(); ++b)
+        cells += bodies->body(b).n_cells();
+      if (cells < ranks)
+        throw std::runtime_error(
+          "estep was started as " + std::to_string(ranks) +
+          " MPI processes, more than the " + std::to_string(cells) +
+          " cells of the " + system.name() +
+          " they would share. Start at most as many processes as cells "
+          "(and for a gain, far fewer: see doc/parallel.md).");
     }
 
     /** What the command line asks for. */
@@ -484,8 +510,8 @@ namespace estep
       settings.energy_drift_warning    = parameters.energy_drift_warning;
       settings.checkpoint_interval     = parameters.checkpoint_interval;
       settings.checkpoint_wall_seconds = parameters.checkpoint_wall_seconds;
-      if (parameters.checkpoint_interval > 0. ||
-          parameters.checkpoint_wall_seconds > 0.)
+      if (this_rank() == 0 && (parameters.checkpoint_interval > 0. ||
+                               parameters.checkpoint_wall_seconds > 0.))
         settings.write_checkpoint = [&](const TimeLoopState &state) {
           write_checkpoint((std::filesystem::path(parameters.output_directory) /
                             checkpoint_file_name)
@@ -564,15 +590,25 @@ namespace estep
       read_parameters(command, prm);
       RunParameters parameters;
       parameters.parse_parameters(prm);
-      set_thread_count(parameters.threads);
+      // The ranks on one machine share its cores.
+      set_thread_count(parameters.threads != 0 ?
+                         parameters.threads :
+                         std::max(1u,
+                                  dealii::MultithreadInfo::n_cores() /
+                                    ranks_on_this_machine()));
 
       const Problem problem = create_problem(prm);
       check_initial_state(problem);
+      check_distribution(*problem.system);
+      const bool writes_output = this_rank() == 0;
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
-      const auto                     postprocessors =
-        create_run_postprocessors(prm, problem, *integrator, parameters);
+      // The other ranks hold the same state and write nothing.
+      const auto postprocessors =
+        writes_output ?
+          create_run_postprocessors(prm, problem, *integrator, parameters) :
+          std::vector<std::unique_ptr<Postprocessor>>();
       const RunRecord record{problem,
                              *integrator,
                              postprocessors,
@@ -601,7 +637,26 @@ namespace estep
                       << directory.string()
                       << "/: the run starts from the beginning\n";
         }
-      prepare_output_directory(directory, prm, record, checkpoint.has_value());
+      std::exception_ptr preparation_error;
+      if (writes_output)
+        try
+          {
+            prepare_output_directory(directory,
+                                     prm,
+                                     record,
+                                     checkpoint.has_value());
+          }
+        catch (...)
+          {
+            preparation_error = std::current_exception();
+          }
+      if (largest_over_ranks(preparation_error != nullptr) != 0)
+        {
+          if (preparation_error)
+            std::rethrow_exception(preparation_error);
+          return exit_input_error;
+        }
+      std::string start_error;
       try
         {
           if (checkpoint)
@@ -612,18 +667,24 @@ namespace estep
         }
       catch (const std::runtime_error &error)
         {
+          start_error = error.what();
+        }
+      if (largest_over_ranks(!start_error.empty()) != 0)
+        {
+          if (start_error.empty())
+            return exit_failed;
           // The output directory does not take the outputs (a full disk):
           // the run cannot start.
           try
             {
               write_file_atomically(
                 summary_file,
-                status_summary(record, "failed", error.what()).to_string() +
+                status_summary(record, "failed", start_error).to_string() +
                   "\n");
             }
           catch (const std::exception &)
             {}
-          std::cerr << "estep: " << error.what() << '\n';
+          std::cerr << "estep: " << start_error << '\n';
           return exit_failed;
         }
 
@@ -632,11 +693,30 @@ namespace estep
                                                          parameters_as_read,
                                                          postprocessors,
                                                          resumed_state);
+      if (result.status == RunStatus::failed && rank_count() > 1)
+        {
+          // An output of the first rank failed during the run; the other
+          // ranks, which know nothing of it, are still stepping.
+          std::cerr << "estep: " << result.message << '\n';
+          try
+            {
+              write_file_atomically(
+                summary_file,
+                status_summary(record, "failed", result.message).to_string() +
+                  "\n");
+            }
+          catch (const std::exception &)
+            {}
+          end_all_ranks(exit_failed);
+        }
       finish_postprocessors(postprocessors, result);
       try
         {
-          write_file_atomically(summary_file,
-                                run_summary(record, result).to_string() + "\n");
+          // Every rank computes the summary (its energies are collective).
+          const std::string summary =
+            run_summary(record, result).to_string() + "\n";
+          if (writes_output)
+            write_file_atomically(summary_file, summary);
         }
       catch (const std::exception &error)
         {
@@ -730,6 +810,18 @@ namespace estep
                                                             argv + argc),
                                    std::cout);
           }
+        // Started by an MPI launcher as several processes: they share the
+        // run, and only the first speaks and writes.
+        if (launched_processes() > 1)
+          {
+            start_mpi();
+            distribute_blocks_over_mpi_ranks();
+            if (this_rank() > 0)
+              {
+                std::cout.rdbuf(nullptr);
+                std::cerr.rdbuf(nullptr);
+              }
+          }
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)
           {
@@ -756,17 +848,6 @@ namespace estep
           throw std::runtime_error(
             "No input file given. Usage: estep [options] INPUT.prm "
             "(see estep --help).");
-        if (const auto [ranks, rank] = launched_ranks(); ranks > 1)
-          {
-            if (rank > 0) // The first process says why.
-              return exit_input_error;
-            throw std::runtime_error(
-              "estep was started as " + std::to_string(ranks) +
-              " MPI processes, but it does not distribute a run over "
-              "processes: they would all run the whole problem into the same "
-              "output directory. Start one process; it uses every core "
-              "(--threads).");
-          }
         const int code = run(command);
         finish_mpi();
         return code;

@@ -7,7 +7,7 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/grid/tria.h>
 
-#include <estep/base/parallel_blocks.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 #include <estep/fem/meshes.h>
@@ -249,6 +249,11 @@ namespace estep
      * not null, stored there: force component i on vertex a of cell e at
      * forces[cell_force_offset(e, a) + 4 i].
      */
+    /** The cells assemble_gradient() takes at a time, from a multiple of
+     * it: where the chunks begin changes the bits of the material's batch
+     * call (its vector and scalar parts). */
+    constexpr unsigned int gradient_chunk = 128; // a multiple of n_lanes
+
     ESTEP_LANE_KERNEL void
     assemble_gradient(const P1CellData &data,
                       const Material   &material,
@@ -257,7 +262,7 @@ namespace estep
                       double           *y,
                       double           *forces)
     {
-      constexpr unsigned int chunk = 128; // a multiple of n_lanes
+      constexpr unsigned int chunk = gradient_chunk;
       const double           c     = material.quadratic_modulus();
       Lanes                  F[chunk / n_lanes][9], C[chunk / n_lanes][9];
       double                 J[chunk], df[chunk];
@@ -333,8 +338,8 @@ namespace estep
       }
     };
     const unsigned int n_padded = data.n_padded_cells();
-    const Terms        terms =
-      sum_over_blocks<Terms>(n_blocks(n_padded), [&](const unsigned int b) {
+    const Terms        terms    = sum_over_distributed_blocks<Terms>(
+      n_blocks(n_padded), [&](const unsigned int b) {
         const BlockRange cells  = block_range(b, n_padded);
         const double     square = jacobians_and_square_sum(data,
                                                        scratch_positions.data(),
@@ -362,6 +367,11 @@ namespace estep
     internal::copy_padded(q.data(), q.size(), scratch_positions.data());
     const unsigned int n_padded = data.n_padded_cells();
     g.reinit(n_dofs(), true);
+    if (rank_count() > 1)
+      {
+        distributed_gradient(g);
+        return;
+      }
     if (thread_count() == 1 || n_blocks(n_padded) == 1)
       {
         scratch_forces.assign(q.size() + 1, 0.);
@@ -391,20 +401,121 @@ namespace estep
     for_each_block(n_blocks(data.n_points), [&](const unsigned int b) {
       const BlockRange points = block_range(b, data.n_points);
       for (unsigned int p = points.begin; p < points.end; ++p)
-        {
-          double sum[3] = {0., 0., 0.};
-          for (unsigned int k = point_forces.start[p];
-               k < point_forces.start[p + 1];
-               ++k)
-            {
-              const double *force = &scratch_forces[point_forces.offset[k]];
-              for (unsigned int i = 0; i < 3; ++i)
-                sum[i] += force[4 * i];
-            }
-          for (unsigned int i = 0; i < 3; ++i)
-            g[3 * p + i] = sum[i];
-        }
+        add_point_forces(p, &g[3 * p]);
     });
+  }
+
+  void
+  ElasticBody::add_point_forces(const unsigned int p, double *sum) const
+  {
+    sum[0] = sum[1] = sum[2] = 0.;
+    for (unsigned int k = point_forces.start[p]; k < point_forces.start[p + 1];
+         ++k)
+      {
+        const double *force = &scratch_forces[point_forces.offset[k]];
+        for (unsigned int i = 0; i < 3; ++i)
+          sum[i] += force[4 * i];
+      }
+  }
+
+  void
+  ElasticBody::distributed_gradient(Vector &g) const
+  {
+    if (point_forces.start.empty())
+      point_forces = PointForces(data);
+    if (rank_points.doubles_per_rank.empty())
+      rank_points = RankPoints(data);
+    const unsigned int n_padded = data.n_padded_cells();
+    scratch_forces.resize(12 * std::size_t(n_padded));
+    const auto &force_cells = rank_points.force_cells;
+    for_each_block(force_cells.size(), [&](const unsigned int i) {
+      assemble_gradient(data,
+                        *body_material,
+                        scratch_positions.data(),
+                        force_cells[i],
+                        nullptr,
+                        scratch_forces.data());
+    });
+    const unsigned int n_mine = rank_points.doubles_per_rank[this_rank()] / 3;
+    scratch_mine.resize(3 * n_mine);
+    for_each_block(n_blocks(n_mine), [&](const unsigned int b) {
+      const BlockRange mine = block_range(b, n_mine);
+      for (unsigned int k = mine.begin; k < mine.end; ++k)
+        add_point_forces(rank_points.points[rank_points.first + k],
+                         &scratch_mine[3 * k]);
+    });
+    if (rank_points.in_order)
+      {
+        gather_from_all_ranks(scratch_mine.data(),
+                              rank_points.doubles_per_rank,
+                              g.data());
+        return;
+      }
+    scratch_all.resize(n_dofs());
+    gather_from_all_ranks(scratch_mine.data(),
+                          rank_points.doubles_per_rank,
+                          scratch_all.data());
+    for (unsigned int k = 0; k < data.n_points; ++k)
+      for (unsigned int i = 0; i < 3; ++i)
+        g[3 * rank_points.points[k] + i] = scratch_all[3 * k + i];
+  }
+
+  ElasticBody::RankPoints::RankPoints(const P1CellData &data)
+  {
+    const unsigned int n_padded = data.n_padded_cells();
+    const unsigned int ranks = rank_count(), me = this_rank();
+    // The first cell of each point, and the rank whose blocks hold it.
+    std::vector<unsigned int> first_cell(data.n_points, n_padded);
+    for (unsigned int e = 0; e < n_padded; ++e)
+      for (unsigned int a = 0; a < 4; ++a)
+        first_cell[data.point[a][e]] =
+          std::min(first_cell[data.point[a][e]], e);
+    std::vector<unsigned int> cell_rank(n_blocks(n_padded));
+    for (unsigned int r = 0; r < ranks; ++r)
+      {
+        const BlockRange blocks = rank_blocks(n_blocks(n_padded), r);
+        std::fill(cell_rank.begin() + blocks.begin,
+                  cell_rank.begin() + blocks.end,
+                  r);
+      }
+    std::vector<unsigned int> point_rank(data.n_points);
+    for (unsigned int p = 0; p < data.n_points; ++p)
+      point_rank[p] = cell_rank[first_cell[p] / block_size];
+
+    doubles_per_rank.assign(ranks, 0);
+    for (unsigned int r = 0; r < ranks; ++r)
+      {
+        if (r == me)
+          first = points.size();
+        for (unsigned int p = 0; p < data.n_points; ++p)
+          if (point_rank[p] == r)
+            {
+              points.push_back(p);
+              doubles_per_rank[r] += 3;
+            }
+      }
+    in_order = true;
+    for (unsigned int k = 0; k < points.size(); ++k)
+      in_order = in_order && points[k] == k;
+
+    // The chunks of cells of assemble_gradient() with a vertex among this
+    // rank's points (whole chunks, so that each cell's forces have the bits
+    // of the serial loop), in runs of at most block_size cells.
+    for (unsigned int chunk = 0; chunk < n_padded; chunk += gradient_chunk)
+      {
+        const unsigned int end    = std::min(chunk + gradient_chunk, n_padded);
+        bool               needed = false;
+        for (unsigned int e = chunk; e < end && !needed; ++e)
+          for (unsigned int a = 0; a < 4; ++a)
+            needed = needed || point_rank[data.point[a][e]] == me;
+        if (!needed)
+          continue;
+        if (!force_cells.empty() && force_cells.back().end == chunk &&
+            force_cells.back().end - force_cells.back().begin < block_size)
+          force_cells.back().end = end;
+        else
+          force_cells.push_back({chunk, end});
+      }
   }
 
   ElasticBody::PointForces::PointForces(const P1CellData &data)

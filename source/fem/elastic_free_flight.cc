@@ -1,6 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
-#include <estep/base/parallel_blocks.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 
@@ -271,7 +271,7 @@ namespace estep
                                              padded_q + q.size() + 1;
     internal::copy_padded(q.data(), q.size(), padded_q);
     internal::copy_padded(v.data(), v.size(), padded_v);
-    const QuadraticSums sums = sum_over_blocks<QuadraticSums>(
+    const QuadraticSums sums = sum_over_distributed_blocks<QuadraticSums>(
       n_blocks(n_padded), [&](const unsigned int b) {
         return build_cubics(body.cell_data(),
                             padded_q,
@@ -307,7 +307,7 @@ namespace estep
   ElasticFreeFlight::volumetric_part(const double s, const bool slope) const
   {
     const unsigned int n_padded = body.cell_data().n_padded_cells();
-    return sum_over_blocks<LineValue>(
+    return sum_over_distributed_blocks<LineValue>(
       n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange   cells = block_range(b, n_cells);
         const unsigned int count = cells.end - cells.begin;
@@ -470,7 +470,7 @@ namespace estep
         return *this;
       }
     };
-    CurvatureTerms terms = sum_over_blocks<CurvatureTerms>(
+    CurvatureTerms terms = sum_over_distributed_blocks<CurvatureTerms>(
       n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange cells = block_range(b, n_cells);
         JacobianRanges   ranges;
@@ -549,8 +549,8 @@ namespace estep
         return *this;
       }
     };
-    const Ranges volumetric =
-      sum_over_blocks<Ranges>(n_blocks(n_cells), [&](const unsigned int b) {
+    const Ranges volumetric = sum_over_distributed_blocks<Ranges>(
+      n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange cells = block_range(b, n_cells);
         JacobianRanges   ranges;
         Ranges           block_sum{{0., 0.}, {0., 0.}};
@@ -617,23 +617,23 @@ namespace estep
       return limit;
     // Per block, the first inversion of its cells (each bounded by the
     // block's earliest so far), then the earliest of the blocks.
-    std::vector<double> first(n_blocks(n_cells));
-    for_each_block(first.size(), [&](const unsigned int b) {
-      const BlockRange cells = block_range(b, n_cells);
-      double           best  = infinity;
-      for (unsigned int e = cells.begin; e < cells.end; ++e)
-        {
-          if (!(c0[e] >
-                cubic_rounding * cubic_scale(c0[e], c1[e], c2[e], c3[e], 0.)))
-            {
-              best = 0.;
-              break;
-            }
-          best =
-            std::min(best, first_inversion(c0[e], c1[e], c2[e], c3[e], best));
-        }
-      first[b] = best;
-    });
+    const std::vector<double> first = distributed_block_terms<double>(
+      n_blocks(n_cells), [&](const unsigned int b) {
+        const BlockRange cells = block_range(b, n_cells);
+        double           best  = infinity;
+        for (unsigned int e = cells.begin; e < cells.end; ++e)
+          {
+            if (!(c0[e] >
+                  cubic_rounding * cubic_scale(c0[e], c1[e], c2[e], c3[e], 0.)))
+              {
+                best = 0.;
+                break;
+              }
+            best =
+              std::min(best, first_inversion(c0[e], c1[e], c2[e], c3[e], best));
+          }
+        return best;
+      });
     const double best = *std::min_element(first.begin(), first.end());
     limit             = best;
     limit_ready       = true;

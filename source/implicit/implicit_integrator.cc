@@ -117,4 +117,12 @@ namespace estep
   {
     return hermite_dense_output(time, q_old, v_old);
   }
+
+
+
+  Snapshot
+  ImplicitIntegrator::dense_state(const double time) const
+  {
+    return hermite_dense_output(time, q_old, v_old, false);
+  }
 } // namespace estep

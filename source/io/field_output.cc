@@ -188,7 +188,7 @@ namespace estep
       {
         try
           {
-            write(integrator.dense_output(
+            write(integrator.dense_state(
               std::max(self.next_time, integrator.previous_time())));
           }
         catch (const std::runtime_error &error)

@@ -1,5 +1,5 @@
 #include <estep/base/config.h>
-#include <estep/base/parallel_blocks.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/io/run_summary.h>
 
 #include <sys/resource.h>
@@ -77,6 +77,7 @@ namespace estep
       .add("final time", result.final_time)
       .add("wall seconds", result.wall_seconds)
       .add("threads", thread_count())
+      .add("MPI processes", rank_count())
       .add("peak memory [MiB]", peak_memory_mib());
 
     JsonObject counters;

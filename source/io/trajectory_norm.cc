@@ -15,7 +15,7 @@ namespace estep
     const double weights[3] = {5. / 9., 8. / 9., 5. / 9.};
     for (unsigned int k = 0; k < 3; ++k)
       {
-        const Snapshot s = integrator.dense_output(centre + half * nodes[k]);
+        const Snapshot s = integrator.dense_state(centre + half * nodes[k]);
         integral += half * weights[k] * (s.q.norm_sqr() + s.v.norm_sqr());
       }
   }

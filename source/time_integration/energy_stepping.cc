@@ -361,6 +361,18 @@ namespace estep
   Snapshot
   EnergyStepping::dense_output(const double time) const
   {
+    Snapshot snapshot                  = dense_state(time);
+    snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
+    snapshot.potential_energy          = system.energy(snapshot.q);
+    snapshot.terraced_potential_energy = level_height(level_flight);
+    return snapshot;
+  }
+
+
+
+  Snapshot
+  EnergyStepping::dense_state(const double time) const
+  {
     Snapshot snapshot;
     snapshot.t = time;
     if (time == t)
@@ -373,10 +385,10 @@ namespace estep
         snapshot.q = q_start;
         snapshot.q.add(time - t_previous, v_flight);
       }
-    snapshot.v                         = v_flight;
-    snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
-    snapshot.potential_energy          = system.energy(snapshot.q);
-    snapshot.terraced_potential_energy = level_height(level_flight);
+    snapshot.v              = v_flight;
+    snapshot.kinetic_energy = snapshot.potential_energy =
+      snapshot.terraced_potential_energy =
+        std::numeric_limits<double>::quiet_NaN();
     return snapshot;
   }
 

@@ -99,6 +99,14 @@ namespace estep
 
 
 
+  Snapshot
+  ExplicitNewmark::dense_state(const double time) const
+  {
+    return hermite_dense_output(time, q_old, v_old, false);
+  }
+
+
+
   std::vector<Counter>
   ExplicitNewmark::counters() const
   {

@@ -1,6 +1,7 @@
 #include <estep/time_integration/time_integrator.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace estep
 {
@@ -21,7 +22,8 @@ namespace estep
   Snapshot
   TimeIntegrator::hermite_dense_output(const double  time,
                                        const Vector &q_old,
-                                       const Vector &v_old) const
+                                       const Vector &v_old,
+                                       const bool    with_energies) const
   {
     Snapshot     snapshot;
     const double tau = t - t_previous;
@@ -50,10 +52,24 @@ namespace estep
               (d00 * q_old[i] + d01 * q[i]) / tau + d10 * v_old[i] + d11 * v[i];
           }
       }
-    snapshot.kinetic_energy            = kinetic_energy(system, snapshot.v);
-    snapshot.potential_energy          = system.energy(snapshot.q);
+    if (with_energies)
+      {
+        snapshot.kinetic_energy   = kinetic_energy(system, snapshot.v);
+        snapshot.potential_energy = system.energy(snapshot.q);
+      }
+    else
+      snapshot.kinetic_energy = snapshot.potential_energy =
+        std::numeric_limits<double>::quiet_NaN();
     snapshot.terraced_potential_energy = snapshot.potential_energy;
     return snapshot;
+  }
+
+
+
+  Snapshot
+  TimeIntegrator::dense_state(const double time) const
+  {
+    return dense_output(time);
   }
 
 

@@ -1,3 +1,4 @@
+#include <estep/base/distributed_blocks.h>
 #include <estep/time_integration/time_loop.h>
 
 #include <chrono>
@@ -266,10 +267,13 @@ namespace estep
               for (RunObserver *observer : observers)
                 observer->after_step(integrator);
               emit_outputs_until(integrator.time());
-              if (interruption != 0)
+              // On several MPI ranks, a signal that reached one of them ends
+              // the run on all, after the same step.
+              if (const int signal = largest_over_ranks(interruption);
+                  signal != 0)
                 {
                   result.status = RunStatus::interrupted;
-                  result.signal = interruption;
+                  result.signal = signal;
                   std::ostringstream message;
                   message << "Interrupted by signal " << result.signal
                           << " at t = " << integrator.time() << ".";

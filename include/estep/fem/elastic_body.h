@@ -1,6 +1,7 @@
 #ifndef estep_fem_elastic_body_h
 #define estep_fem_elastic_body_h
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/elastic_bodies.h>
 #include <estep/fem/p1_cell_data.h>
 #include <estep/materials/material.h>
@@ -47,8 +48,11 @@ namespace estep
    * deal.II.
    *
    * Its loops over cells run on the threads of thread_count() (see
-   * parallel_blocks.h) and give the same bits on any number of them. Not
-   * thread-safe itself: energy() and gradient() use internal scratch arrays.
+   * parallel_blocks.h) and, in a run on several MPI ranks, on the ranks'
+   * blocks of cells (see distributed_blocks.h; energy() and gradient() are
+   * then collective, and every rank holds the whole state and mesh); they
+   * give the same bits on any number of threads and ranks. Not thread-safe
+   * itself: energy() and gradient() use internal scratch arrays.
    */
   class ElasticBody : public MechanicalSystem, public ElasticBodies
   {
@@ -221,6 +225,17 @@ namespace estep
      * per point); forces, the same, or on several threads the forces of each
      * cell (see gradient()). */
     mutable std::vector<double> scratch_positions, scratch_forces;
+    /** The gradient of this rank's points, and of every rank's points, in
+     * the order of RankPoints (on several ranks). */
+    mutable std::vector<double> scratch_mine, scratch_all;
+    /** The gradient on several MPI ranks (see RankPoints), into @p g;
+     * scratch_positions holds the configuration. */
+    void
+    distributed_gradient(Vector &g) const;
+    /** The sum of the forces on point @p p from scratch_forces (in the order
+     * of point_forces) into @p sum[0..2]. */
+    void
+    add_point_forces(const unsigned int p, double *sum) const;
     /**
      * For each point, where the forces the cells exert on it lie in the
      * array of cell forces, in the order in which the serial gradient adds
@@ -235,6 +250,30 @@ namespace estep
       std::vector<std::size_t>  offset;
     };
     mutable PointForces point_forces;
+    /**
+     * On several MPI ranks (see distributed_blocks.h): a point's gradient is
+     * computed by the rank whose blocks hold the first cell of the point, from
+     * the forces of all its cells (its own and some of the next ranks'), and
+     * then sent to every rank. Built on the first gradient on several ranks.
+     */
+    struct RankPoints
+    {
+      RankPoints() = default;
+      explicit RankPoints(const P1CellData &data);
+      /** The points of each rank in increasing order, rank after rank. */
+      std::vector<unsigned int> points;
+      /** How many of them each rank has, 3 per point (its doubles). */
+      std::vector<unsigned int> doubles_per_rank;
+      /** Where this rank's points start in points. */
+      unsigned int first = 0;
+      /** Whether points is 0, 1, 2, ... (the ranks' points are contiguous
+       * and in rank order): then the gradient is gathered in place. */
+      bool in_order = false;
+      /** The cells whose forces this rank's points need, in runs of whole
+       * chunks of the gradient's loop, at most block_size cells each. */
+      std::vector<BlockRange> force_cells;
+    };
+    mutable RankPoints rank_points;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };

@@ -41,6 +41,9 @@ namespace estep
     Snapshot
     dense_output(const double t) const override;
 
+    Snapshot
+    dense_state(const double t) const override;
+
     /** The settings. */
     const ImplicitParameters &
     parameters() const;

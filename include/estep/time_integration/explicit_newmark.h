@@ -35,6 +35,9 @@ namespace estep
     Snapshot
     dense_output(const double t) const override;
 
+    Snapshot
+    dense_state(const double t) const override;
+
     std::vector<Counter>
     counters() const override;
 

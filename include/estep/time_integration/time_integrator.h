@@ -64,6 +64,17 @@ namespace estep
     virtual Snapshot
     dense_output(const double t) const = 0;
 
+    /**
+     * The positions and velocities of dense_output() at time t, without the
+     * energies (NaN): what an observer that needs only the state asks for.
+     * It touches no global sum, so on several MPI ranks one rank may call it
+     * alone (dense_output() evaluates V, which all ranks must do together).
+     * The default calls dense_output(); an integrator to be run on several
+     * ranks with such observers overrides it.
+     */
+    virtual Snapshot
+    dense_state(const double t) const;
+
     /** Work counters, in a fixed order. */
     virtual std::vector<Counter>
     counters() const = 0;
@@ -169,12 +180,13 @@ namespace estep
     /**
      * Dense output of a step-based scheme: the cubic Hermite interpolant of
      * (q_old, v_old) at t_previous and (q, v) at t (third order), with the
-     * energies at time @p time.
+     * energies at time @p time if @p with_energies.
      */
     Snapshot
     hermite_dense_output(const double  time,
                          const Vector &q_old,
-                         const Vector &v_old) const;
+                         const Vector &v_old,
+                         const bool    with_energies = true) const;
 
     const MechanicalSystem &system;
     double                  t          = 0.;

@@ -1,0 +1,119 @@
+#ifndef estep_base_distributed_blocks_h
+#define estep_base_distributed_blocks_h
+
+#include <estep/base/parallel_blocks.h>
+
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+/**
+ * @file
+ * The per-cell loops of a run on several MPI processes (ranks). The blocks
+ * of cells of parallel_blocks.h are shared among the ranks in contiguous
+ * ranges; each rank computes its own on its threads; then every per-block
+ * result is sent to every rank, and each adds them in block order. So every
+ * rank holds the same sums, to the last bit, and the same as a run on one
+ * process: the blocks depend on the mesh alone, and which rank computed a
+ * block's result does not change it.
+ *
+ * Without distribute_blocks_over_mpi_ranks() (and on one rank) the loops are
+ * those of parallel_blocks.h.
+ */
+
+namespace estep
+{
+  /**
+   * Share the blocks of the distributed loops among the processes of
+   * MPI_COMM_WORLD, which must be running (start_mpi()).
+   */
+  void
+  distribute_blocks_over_mpi_ranks();
+
+  /** The number of ranks the blocks are shared among (1 without MPI). */
+  unsigned int
+  rank_count();
+
+  /** This process's rank among them (0 without MPI). */
+  unsigned int
+  this_rank();
+
+  /** The blocks [begin, end) of @p n_blocks that @p rank computes: balanced
+   * contiguous ranges, in rank order. */
+  BlockRange
+  rank_blocks(const unsigned int n_blocks, const unsigned int rank);
+
+  /**
+   * @p items holds @p n_blocks items of @p item_bytes bytes each, of which
+   * this rank has written those of rank_blocks(n_blocks, this_rank()); on
+   * return every rank holds every item, each from the rank that computed it.
+   * Collective: every rank must call it with the same sizes.
+   */
+  void
+  share_block_items(void              *items,
+                    const std::size_t  item_bytes,
+                    const unsigned int n_blocks);
+
+  /**
+   * Rank r's @p counts[r] doubles, concatenated in rank order into @p all, on
+   * every rank (this rank's are @p mine). Collective.
+   */
+  void
+  gather_from_all_ranks(const double                    *mine,
+                        const std::vector<unsigned int> &counts,
+                        double                          *all);
+
+  /** The largest of the ranks' @p value. Collective. */
+  int
+  largest_over_ranks(const int value);
+
+  /**
+   * The number of ranks on this machine (1 without MPI): the machine's cores
+   * are theirs to share.
+   */
+  unsigned int
+  ranks_on_this_machine();
+
+  /** End every rank's process at once with exit code @p code (after an error
+   * one rank alone met, which the others would wait for in vain). */
+  [[noreturn]] void
+  end_all_ranks(const int code);
+
+  /**
+   * The results @p term(b) of every block b < @p n_blocks, on every rank;
+   * each rank computes those of its rank_blocks() on its threads. T must be
+   * trivially copyable (it is sent as bytes). Collective.
+   */
+  template <typename T, typename Term>
+  std::vector<T>
+  distributed_block_terms(const unsigned int n_blocks, const Term &term)
+  {
+    static_assert(std::is_trivially_copyable_v<T>,
+                  "block results are sent between ranks as bytes");
+    std::vector<T>   terms(n_blocks);
+    const BlockRange mine = rank_blocks(n_blocks, this_rank());
+    for_each_block(mine.end - mine.begin, [&](const unsigned int i) {
+      terms[mine.begin + i] = term(mine.begin + i);
+    });
+    share_block_items(terms.data(), sizeof(T), n_blocks);
+    return terms;
+  }
+
+  /**
+   * The sum of @p term(b) over b < @p n_blocks (at least one), the terms
+   * computed by the ranks (see distributed_block_terms()) and added in the
+   * order of b, the same on every rank. Collective.
+   */
+  template <typename T, typename Term>
+  T
+  sum_over_distributed_blocks(const unsigned int n_blocks, const Term &term)
+  {
+    const std::vector<T> terms = distributed_block_terms<T>(n_blocks, term);
+    T                    total = terms[0];
+    for (unsigned int b = 1; b < n_blocks; ++b)
+      total += terms[b];
+    return total;
+  }
+} // namespace estep
+
+#endif

@@ -1,0 +1,174 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <estep/base/distributed_blocks.h>
+
+#include <cstdlib>
+#include <numeric>
+
+namespace estep
+{
+  namespace
+  {
+    bool distributed = false;
+
+    MPI_Comm
+    communicator()
+    {
+      return MPI_COMM_WORLD;
+    }
+
+    void
+    check(const int code, const char *call)
+    {
+      AssertThrow(code == MPI_SUCCESS,
+                  dealii::ExcMessage(std::string(call) + " failed."));
+    }
+  } // namespace
+
+
+
+  void
+  distribute_blocks_over_mpi_ranks()
+  {
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    AssertThrow(initialized,
+                dealii::ExcMessage("distribute_blocks_over_mpi_ranks(): MPI "
+                                   "is not running."));
+    distributed = true;
+  }
+
+
+
+  unsigned int
+  rank_count()
+  {
+    if (!distributed)
+      return 1;
+    int size = 1;
+    MPI_Comm_size(communicator(), &size);
+    return size;
+  }
+
+
+
+  unsigned int
+  this_rank()
+  {
+    if (!distributed)
+      return 0;
+    int rank = 0;
+    MPI_Comm_rank(communicator(), &rank);
+    return rank;
+  }
+
+
+
+  BlockRange
+  rank_blocks(const unsigned int n_blocks, const unsigned int rank)
+  {
+    const unsigned long long n = n_blocks, ranks = rank_count();
+    return {static_cast<unsigned int>(n * rank / ranks),
+            static_cast<unsigned int>(n * (rank + 1) / ranks)};
+  }
+
+
+
+  void
+  share_block_items(void              *items,
+                    const std::size_t  item_bytes,
+                    const unsigned int n_blocks)
+  {
+    const unsigned int ranks = rank_count();
+    if (ranks == 1)
+      return;
+    std::vector<int> counts(ranks), displacements(ranks);
+    for (unsigned int r = 0; r < ranks; ++r)
+      {
+        const BlockRange blocks = rank_blocks(n_blocks, r);
+        counts[r]               = (blocks.end - blocks.begin) * item_bytes;
+        displacements[r]        = blocks.begin * item_bytes;
+      }
+    check(MPI_Allgatherv(MPI_IN_PLACE,
+                         0,
+                         MPI_DATATYPE_NULL,
+                         items,
+                         counts.data(),
+                         displacements.data(),
+                         MPI_BYTE,
+                         communicator()),
+          "MPI_Allgatherv");
+  }
+
+
+
+  void
+  gather_from_all_ranks(const double                    *mine,
+                        const std::vector<unsigned int> &counts,
+                        double                          *all)
+  {
+    const unsigned int ranks = rank_count();
+    AssertDimension(counts.size(), ranks);
+    if (ranks == 1)
+      {
+        std::copy(mine, mine + counts[0], all);
+        return;
+      }
+    std::vector<int> sizes(counts.begin(), counts.end()), displacements(ranks);
+    std::exclusive_scan(sizes.begin(), sizes.end(), displacements.begin(), 0);
+    check(MPI_Allgatherv(mine,
+                         sizes[this_rank()],
+                         MPI_DOUBLE,
+                         all,
+                         sizes.data(),
+                         displacements.data(),
+                         MPI_DOUBLE,
+                         communicator()),
+          "MPI_Allgatherv");
+  }
+
+
+
+  int
+  largest_over_ranks(const int value)
+  {
+    if (rank_count() == 1)
+      return value;
+    int largest = value;
+    check(MPI_Allreduce(
+            &value, &largest, 1, MPI_INT, MPI_MAX, communicator()),
+          "MPI_Allreduce");
+    return largest;
+  }
+
+
+
+  unsigned int
+  ranks_on_this_machine()
+  {
+    if (rank_count() == 1)
+      return 1;
+    MPI_Comm machine;
+    check(MPI_Comm_split_type(communicator(),
+                              MPI_COMM_TYPE_SHARED,
+                              0,
+                              MPI_INFO_NULL,
+                              &machine),
+          "MPI_Comm_split_type");
+    int size = 1;
+    MPI_Comm_size(machine, &size);
+    MPI_Comm_free(&machine);
+    return size;
+  }
+
+
+
+  void
+  end_all_ranks(const int code)
+  {
+    if (rank_count() > 1)
+      MPI_Abort(communicator(), code);
+    std::exit(code);
+  }
+} // namespace estep
