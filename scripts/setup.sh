@@ -27,11 +27,12 @@ esac
 # The tiers outside the default one: long runs, the figures, the mutation suite, the fuzzers.
 default_tier=(-LE "paper|long|mutation|fuzz")
 
-# libdeal.ii-dev brings deal.II 9.4 with Trilinos, SUNDIALS, HDF5, gmsh, CGAL and MPI; numdiff
+# libdeal.ii-dev brings deal.II 9.4 with Trilinos, SUNDIALS, HDF5, gmsh, CGAL and MPI (and
+# openmpi-bin Open MPI's launcher, mpirun, for the runs on several processes); numdiff
 # is expected by deal.II's test tools; GoogleTest for the tests, Google Benchmark for the
 # benchmarks, clang-format (14 on Debian 12) for the formatting check, Python with matplotlib
 # for the plotting and study scripts.
-packages=(libdeal.ii-dev cmake g++ make numdiff libgtest-dev libbenchmark-dev clang-format
+packages=(libdeal.ii-dev openmpi-bin cmake g++ make numdiff libgtest-dev libbenchmark-dev clang-format
           python3 python3-matplotlib python3-numpy)
 if [[ $action == --fuzz ]]; then
   # clang 14 and its runtime libraries: libFuzzer and the sanitizers.

@@ -92,14 +92,20 @@ namespace estep
 
     /** The number of processes an MPI launcher (Open MPI's or MPICH's
      * mpirun) started this one among, from its environment (1 without a
-     * launcher). */
-    unsigned int
-    launched_processes()
+     * launcher), and this one's rank among them. */
+    std::pair<unsigned int, unsigned int>
+    launched_ranks()
     {
-      for (const char *size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+      for (const auto &[size, rank] :
+           {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+            std::pair{"PMI_SIZE", "PMI_RANK"}})
         if (const char *n = std::getenv(size))
-          return std::max(1, std::atoi(n));
-      return 1;
+          {
+            const char *r = std::getenv(rank);
+            return {std::max(1, std::atoi(n)),
+                    r != nullptr ? std::max(0, std::atoi(r)) : 0};
+          }
+      return {1, 0};
     }
 
     /**
@@ -812,10 +818,25 @@ namespace estep
           }
         // Started by an MPI launcher as several processes: they share the
         // run, and only the first speaks and writes.
-        if (launched_processes() > 1)
+        if (const auto [launched, rank] = launched_ranks(); launched > 1)
           {
             start_mpi();
             distribute_blocks_over_mpi_ranks();
+            if (rank_count() != launched)
+              {
+                // Another MPI's launcher: every process would be alone in
+                // its MPI and run the whole problem.
+                if (rank > 0) // The first process says why.
+                  return exit_input_error;
+                throw std::runtime_error(
+                  "estep was started as " + std::to_string(launched) +
+                  " MPI processes, but its MPI library sees " +
+                  std::to_string(rank_count()) +
+                  ": the launcher is not the one of the MPI estep was built "
+                  "with (Open MPI's mpirun, package openmpi-bin), and each "
+                  "process would run the whole problem into the same output "
+                  "directory.");
+              }
             if (this_rank() > 0)
               {
                 std::cout.rdbuf(nullptr);

@@ -29,14 +29,14 @@ namespace estep
 
 
   void
-  distribute_blocks_over_mpi_ranks()
+  distribute_blocks_over_mpi_ranks(const bool distribute)
   {
     int initialized = 0;
     MPI_Initialized(&initialized);
-    AssertThrow(initialized,
+    AssertThrow(initialized || !distribute,
                 dealii::ExcMessage("distribute_blocks_over_mpi_ranks(): MPI "
                                    "is not running."));
-    distributed = true;
+    distributed = distribute;
   }
 
 
@@ -136,8 +136,7 @@ namespace estep
     if (rank_count() == 1)
       return value;
     int largest = value;
-    check(MPI_Allreduce(
-            &value, &largest, 1, MPI_INT, MPI_MAX, communicator()),
+    check(MPI_Allreduce(&value, &largest, 1, MPI_INT, MPI_MAX, communicator()),
           "MPI_Allreduce");
     return largest;
   }
@@ -150,11 +149,8 @@ namespace estep
     if (rank_count() == 1)
       return 1;
     MPI_Comm machine;
-    check(MPI_Comm_split_type(communicator(),
-                              MPI_COMM_TYPE_SHARED,
-                              0,
-                              MPI_INFO_NULL,
-                              &machine),
+    check(MPI_Comm_split_type(
+            communicator(), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine),
           "MPI_Comm_split_type");
     int size = 1;
     MPI_Comm_size(machine, &size);

@@ -116,10 +116,11 @@ printf 'subsection Time integration\n  set Method = {nergy stepping\nend\n' > br
 expect 1 "Time integration/Method: the value <\{nergy stepping> does not match" -- brace.prm
 expect 1 "needs a number of threads" -- run.prm --threads
 expect 1 "Threads.*does not match" -- run.prm --threads -2
-# Started by mpirun as several processes (its environment, as Open MPI and MPICH set it): the
-# first says once that estep does not distribute runs; the others exit as quietly.
+# Started as several processes by a launcher whose MPI is not estep's (its environment says 2
+# processes, as Open MPI's and MPICH's set it, but MPI sees 1): the first says so once; the
+# others exit as quietly. (unit/mpi runs estep on 2 processes.)
 export OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0
-expect 1 "started as 2 MPI processes, but it does not distribute" -- run.prm --set "Output directory=mpi"
+expect 1 "started as 2 MPI processes, but its MPI library sees 1" -- run.prm --set "Output directory=mpi"
 export OMPI_COMM_WORLD_RANK=1
 "$ESTEP" run.prm --set "Output directory=mpi" > out.txt 2>&1
 [[ $? == 1 && ! -s out.txt ]] || fail "the second of two MPI processes: $(head -3 out.txt)"

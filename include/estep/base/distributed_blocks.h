@@ -25,10 +25,11 @@ namespace estep
 {
   /**
    * Share the blocks of the distributed loops among the processes of
-   * MPI_COMM_WORLD, which must be running (start_mpi()).
+   * MPI_COMM_WORLD, which must be running (start_mpi()); or, if not
+   * @p distribute, let this process compute every block itself again.
    */
   void
-  distribute_blocks_over_mpi_ranks();
+  distribute_blocks_over_mpi_ranks(const bool distribute = true);
 
   /** The number of ranks the blocks are shared among (1 without MPI). */
   unsigned int

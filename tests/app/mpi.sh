@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# MPI: a run gives the same trajectory to the last bit on 1 process and on 2 MPI processes (of 1
+# and of 2 threads): the ranks share the blocks of cells, and every rank adds the blocks' sums in
+# block order. With and without contact. A run on 2 processes ended by SIGTERM resumes on 1 to
+# the same end. A system without elastic cells, or with fewer cells than processes, is refused.
+# Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
+# Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
+# MPIEXEC, the MPI launcher.
+set -u
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+files=$ESTEP_SOURCE_DIR/parameter_files
+# Open MPI refuses to start as root without these (containers, CI); a rank's threads may use any
+# core (by default Open MPI binds each of 2 ranks to one core).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi=("$MPIEXEC" --bind-to none --oversubscribe -np 2)
+
+fail() {
+  echo "FAILED: $*"
+  failures=$((failures + 1))
+}
+
+# same_on_ranks NAME ARGS...: run ARGS on 1 process (1 thread), on 2 processes of 1 thread and
+# of 2 threads, into NAME-<ranks>x<threads>/, and compare.
+same_on_ranks() {
+  local name=$1 run before=$failures
+  shift
+  "$ESTEP" "$@" --threads 1 --set "Output directory=$name-1x1" > "$name-1x1.txt" 2>&1 ||
+    fail "$name on 1 process: $(tail -2 "$name-1x1.txt")"
+  for threads in 1 2; do
+    run=$name-2x$threads
+    "${mpi[@]}" "$ESTEP" "$@" --threads $threads --set "Output directory=$run" > "$run.txt" 2>&1 ||
+      fail "$name on 2 processes of $threads threads: $(tail -2 "$run.txt")"
+    grep -q '"MPI processes": 2,' "$run/summary.json" ||
+      fail "$run: summary.json does not record 2 MPI processes"
+    for file in checkpoint.bin history.csv; do
+      cmp -s "$name-1x1/$file" "$run/$file" ||
+        fail "$name: $file on 2 processes of $threads threads differs from 1 process"
+    done
+  done
+  ((failures == before)) || return
+  echo "$name: $(grep -o '"steps": [0-9]*' "$name-1x1/summary.json"), identical on 1 process and on 2 processes of 1 and 2 threads"
+}
+
+# The cube, 24,000 cells (24 blocks of cells).
+cube=("$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10"
+      --set "Time integration/End time=1.5" --set "Output/Checkpoint interval=0.25")
+same_on_ranks cube "${cube[@]}"
+
+# The colliding balls during their contact (about 3,000 cells per ball, 3 blocks each).
+balls=("$files/ball_collision.prm" --set "Colliding balls/Mesh size=0.2"
+       --set "Time integration/End time=0.125")
+same_on_ranks penalty "${balls[@]}"
+same_on_ranks impenetrable "${balls[@]}" --set "Contact/Mode=impenetrability"
+
+# SIGTERM to the launcher after the first checkpoint: it passes the signal to both processes,
+# which end after the same step (status interrupted, a final checkpoint; each exits with 143,
+# Open MPI's launcher, signalled itself, with 1); resumed on 1
+# process, the run ends where the one on 1 process without a stop ends.
+long_cube=("${cube[@]}" --set "Time integration/End time=8")
+"$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=whole" > whole.txt 2>&1 ||
+  fail "the cube to t = 8 on 1 process: $(tail -2 whole.txt)"
+"${mpi[@]}" "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed" > stopped.txt 2>&1 &
+pid=$!
+while kill -0 $pid 2> /dev/null && [[ ! -f resumed/checkpoint.bin ]]; do sleep 0.02; done
+kill -TERM $pid 2> /dev/null
+wait $pid
+code=$?
+((code != 0)) || fail "SIGTERM on 2 processes: exit code 0: $(tail -3 stopped.txt)"
+grep -q '"status": "interrupted"' resumed/summary.json ||
+  fail "SIGTERM on 2 processes: summary.json does not say interrupted"
+"$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed" --resume > resumed.txt 2>&1 ||
+  fail "the resume on 1 process: $(tail -2 resumed.txt)"
+grep "resuming from" resumed.txt
+for file in checkpoint.bin history.csv; do
+  cmp -s whole/$file resumed/$file || fail "resumed on 1 process: $file differs from the run on 1"
+done
+
+# refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
+refused() {
+  local name=$1 pattern=$2
+  shift 2
+  "${mpi[@]}" "$ESTEP" "$@" --set "Output directory=$name" > "$name.txt" 2>&1
+  local code=$?
+  ((code == 1)) || fail "$name: exit code $code, not 1"
+  [[ $(grep -c "^estep: error: .*$pattern" "$name.txt") == 1 ]] ||
+    fail "$name: not one line saying '$pattern': $(cat "$name.txt")"
+  [[ ! -e $name ]] || fail "$name: an output directory was written"
+  echo "$name: $(grep '^estep: error' "$name.txt")"
+}
+refused argon "no elastic body whose cells" "$files/argon_cluster.prm"
+cat > one_cell.msh << 'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0 0 1
+$EndNodes
+$Elements
+1
+1 4 2 0 1 1 2 3 4
+$EndElements
+MSH
+refused one_cell "more than the 1 cells" "$files/spinning_cube.prm" \
+  --set "Elastic body/Mesh/Type=gmsh" --set "Elastic body/Mesh/File name=one_cell.msh"
+
+if ((failures > 0)); then
+  echo "$failures failures"
+  exit 1
+fi
+echo "all runs identical"
