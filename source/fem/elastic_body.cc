@@ -421,29 +421,49 @@ namespace estep
   void
   ElasticBody::distributed_gradient(Vector &g) const
   {
-    if (point_forces.start.empty())
-      point_forces = PointForces(data);
     if (rank_points.doubles_per_rank.empty())
       rank_points = RankPoints(data);
-    const unsigned int n_padded = data.n_padded_cells();
-    scratch_forces.resize(12 * std::size_t(n_padded));
-    const auto &force_cells = rank_points.force_cells;
-    for_each_block(force_cells.size(), [&](const unsigned int i) {
-      assemble_gradient(data,
-                        *body_material,
-                        scratch_positions.data(),
-                        force_cells[i],
-                        nullptr,
-                        scratch_forces.data());
-    });
+    const auto        &force_cells = rank_points.force_cells;
     const unsigned int n_mine = rank_points.doubles_per_rank[this_rank()] / 3;
+    const unsigned int *const mine = &rank_points.points[rank_points.first];
     scratch_mine.resize(3 * n_mine);
-    for_each_block(n_blocks(n_mine), [&](const unsigned int b) {
-      const BlockRange mine = block_range(b, n_mine);
-      for (unsigned int k = mine.begin; k < mine.end; ++k)
-        add_point_forces(rank_points.points[rank_points.first + k],
-                         &scratch_mine[3 * k]);
-    });
+    if (thread_count() == 1)
+      {
+        // The serial scatter over this rank's cells, in their order: on this
+        // rank's points, the sums of the serial gradient (no other cell
+        // touches them).
+        scratch_forces.assign(n_dofs() + 1, 0.);
+        for (const BlockRange &cells : force_cells)
+          assemble_gradient(data,
+                            *body_material,
+                            scratch_positions.data(),
+                            cells,
+                            scratch_forces.data(),
+                            nullptr);
+        for (unsigned int k = 0; k < n_mine; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            scratch_mine[3 * k + i] = scratch_forces[3 * mine[k] + i];
+      }
+    else
+      {
+        // As gradient() on several threads.
+        if (point_forces.start.empty())
+          point_forces = PointForces(data);
+        scratch_forces.resize(12 * std::size_t(data.n_padded_cells()));
+        for_each_block(force_cells.size(), [&](const unsigned int i) {
+          assemble_gradient(data,
+                            *body_material,
+                            scratch_positions.data(),
+                            force_cells[i],
+                            nullptr,
+                            scratch_forces.data());
+        });
+        for_each_block(n_blocks(n_mine), [&](const unsigned int b) {
+          const BlockRange points = block_range(b, n_mine);
+          for (unsigned int k = points.begin; k < points.end; ++k)
+            add_point_forces(mine[k], &scratch_mine[3 * k]);
+        });
+      }
     if (rank_points.in_order)
       {
         gather_from_all_ranks(scratch_mine.data(),
