@@ -112,12 +112,14 @@ namespace estep
     AssertDimension(counts.size(), ranks);
     if (ranks == 1)
       {
-        std::copy(mine, mine + counts[0], all);
+        if (mine != all)
+          std::copy(mine, mine + counts[0], all);
         return;
       }
     std::vector<int> sizes(counts.begin(), counts.end()), displacements(ranks);
     std::exclusive_scan(sizes.begin(), sizes.end(), displacements.begin(), 0);
-    check(MPI_Allgatherv(mine,
+    const bool in_place = mine == all + displacements[this_rank()];
+    check(MPI_Allgatherv(in_place ? MPI_IN_PLACE : mine,
                          sizes[this_rank()],
                          MPI_DOUBLE,
                          all,

@@ -203,19 +203,6 @@ namespace estep
   namespace
   {
     /**
-     * Where the forces of vertex @p a of the batch of four cells holding cell
-     * @p e start in the cell force array of assemble_gradient() (12 doubles
-     * per cell: per batch, the vertices in turn, each with its x, y and z
-     * lanes). The offsets of the forces on one point, in increasing order,
-     * are the order in which the scatter adds them.
-     */
-    inline std::size_t
-    cell_force_offset(const unsigned int e, const unsigned int a)
-    {
-      return 12 * std::size_t(e - e % n_lanes) + 12 * a + e % n_lanes;
-    }
-
-    /**
      * J_e = det F_e of the cells of @p cells (padding included) into @p J for
      * positions @p x (padded, see load_triples()); returns the sum over them
      * of |Omega_e| (|F_e|^2 - 3).
@@ -239,28 +226,25 @@ namespace estep
       return sum(square);
     }
 
+    /** The cells assemble_gradient() takes at a time, from a multiple of
+     * it: where the chunks begin changes the bits of the material's batch
+     * call (its vector and scalar parts). */
+    constexpr unsigned int gradient_chunk = 128; // a multiple of n_lanes
+
     /**
      * The nodal forces |Omega_e| P_e grad N_a of the cells of @p cells, with
      * P = f'(J) cof F + c F, in chunks of cells: F and cof F stay in L1
      * between the determinant pass and the assembly pass, and f'(J) is one
      * batch call of the material per chunk. They are added to @p y (with one
      * writable double after its last point, see add_triples()) in the order
-     * (batch of four cells, vertex a, cell of the batch); or, if @p forces is
-     * not null, stored there: force component i on vertex a of cell e at
-     * forces[cell_force_offset(e, a) + 4 i].
+     * (batch of four cells, vertex a, cell of the batch).
      */
-    /** The cells assemble_gradient() takes at a time, from a multiple of
-     * it: where the chunks begin changes the bits of the material's batch
-     * call (its vector and scalar parts). */
-    constexpr unsigned int gradient_chunk = 128; // a multiple of n_lanes
-
     ESTEP_LANE_KERNEL void
     assemble_gradient(const P1CellData &data,
                       const Material   &material,
                       const double     *x,
                       const BlockRange  cells,
-                      double           *y,
-                      double           *forces)
+                      double           *y)
     {
       constexpr unsigned int chunk = gradient_chunk;
       const double           c     = material.quadratic_modulus();
@@ -305,16 +289,10 @@ namespace estep
                       force[0][i] -= force[a + 1][i];
                     }
                 }
-              if (forces != nullptr)
-                for (unsigned int a = 0; a < 4; ++a)
-                  for (unsigned int i = 0; i < 3; ++i)
-                    store_lanes(forces + cell_force_offset(e, a) + 4 * i,
-                                force[a][i]);
-              else
-                // Added cell by cell (the cells of a batch may share
-                // vertices).
-                for (unsigned int a = 0; a < 4; ++a)
-                  add_triples(y, data.point[a].data() + e, force[a]);
+              // Added cell by cell (the cells of a batch may share
+              // vertices).
+              for (unsigned int a = 0; a < 4; ++a)
+                add_triples(y, data.point[a].data() + e, force[a]);
             }
         }
     }
@@ -365,144 +343,84 @@ namespace estep
   {
     AssertDimension(q.size(), n_dofs());
     internal::copy_padded(q.data(), q.size(), scratch_positions.data());
-    const unsigned int n_padded = data.n_padded_cells();
     g.reinit(n_dofs(), true);
-    if (rank_count() > 1)
+    if (gradient_parts.threads != thread_count() ||
+        gradient_parts.ranks != rank_count())
       {
-        distributed_gradient(g);
-        return;
+        gradient_parts = GradientParts(data, thread_count());
+        part_forces.assign(gradient_parts.parts.size(),
+                           std::vector<double>(n_dofs() + 1));
       }
-    if (thread_count() == 1 || n_blocks(n_padded) == 1)
+    const GradientParts &shared = gradient_parts;
+    const unsigned int  *points = shared.points.data() + shared.first;
+    double              *mine   = g.data() + 3 * shared.first;
+    if (!shared.in_order)
       {
-        scratch_forces.assign(q.size() + 1, 0.);
-        assemble_gradient(data,
-                          *body_material,
-                          scratch_positions.data(),
-                          {0, n_padded},
-                          scratch_forces.data(),
-                          nullptr);
-        std::copy(scratch_forces.begin(), scratch_forces.end() - 1, g.begin());
-        return;
+        scratch_mine.resize(shared.doubles_per_rank[this_rank()]);
+        mine = scratch_mine.data();
       }
-    // On several threads: the forces of each cell into their own place, then
-    // each point's sum of them in the order in which the scatter above adds
-    // them (point_forces lists them so), which gives the same bits.
-    if (point_forces.start.empty())
-      point_forces = PointForces(data);
-    scratch_forces.resize(12 * std::size_t(n_padded));
-    for_each_block(n_blocks(n_padded), [&](const unsigned int b) {
-      assemble_gradient(data,
-                        *body_material,
-                        scratch_positions.data(),
-                        block_range(b, n_padded),
-                        nullptr,
-                        scratch_forces.data());
-    });
-    for_each_block(n_blocks(data.n_points), [&](const unsigned int b) {
-      const BlockRange points = block_range(b, data.n_points);
-      for (unsigned int p = points.begin; p < points.end; ++p)
-        add_point_forces(p, &g[3 * p]);
-    });
-  }
-
-  void
-  ElasticBody::add_point_forces(const unsigned int p, double *sum) const
-  {
-    sum[0] = sum[1] = sum[2] = 0.;
-    for (unsigned int k = point_forces.start[p]; k < point_forces.start[p + 1];
-         ++k)
-      {
-        const double *force = &scratch_forces[point_forces.offset[k]];
+    for_each_block(shared.parts.size(), [&](const unsigned int j) {
+      const GradientParts::Part &part   = shared.parts[j];
+      double *const              forces = part_forces[j].data();
+      std::fill(forces + 3 * part.lowest, forces + 3 * part.highest + 4, 0.);
+      for (const BlockRange &cells : part.cells)
+        assemble_gradient(
+          data, *body_material, scratch_positions.data(), cells, forces);
+      for (const unsigned int k : part.positions)
         for (unsigned int i = 0; i < 3; ++i)
-          sum[i] += force[4 * i];
-      }
-  }
-
-  void
-  ElasticBody::distributed_gradient(Vector &g) const
-  {
-    if (rank_points.doubles_per_rank.empty())
-      rank_points = RankPoints(data);
-    const auto        &force_cells = rank_points.force_cells;
-    const unsigned int n_mine = rank_points.doubles_per_rank[this_rank()] / 3;
-    const unsigned int *const mine = &rank_points.points[rank_points.first];
-    scratch_mine.resize(3 * n_mine);
-    if (thread_count() == 1)
+          mine[3 * k + i] = forces[3 * points[k] + i];
+    });
+    if (shared.in_order)
       {
-        // The serial scatter over this rank's cells, in their order: on this
-        // rank's points, the sums of the serial gradient (no other cell
-        // touches them).
-        scratch_forces.assign(n_dofs() + 1, 0.);
-        for (const BlockRange &cells : force_cells)
-          assemble_gradient(data,
-                            *body_material,
-                            scratch_positions.data(),
-                            cells,
-                            scratch_forces.data(),
-                            nullptr);
-        for (unsigned int k = 0; k < n_mine; ++k)
-          for (unsigned int i = 0; i < 3; ++i)
-            scratch_mine[3 * k + i] = scratch_forces[3 * mine[k] + i];
-      }
-    else
-      {
-        // As gradient() on several threads.
-        if (point_forces.start.empty())
-          point_forces = PointForces(data);
-        scratch_forces.resize(12 * std::size_t(data.n_padded_cells()));
-        for_each_block(force_cells.size(), [&](const unsigned int i) {
-          assemble_gradient(data,
-                            *body_material,
-                            scratch_positions.data(),
-                            force_cells[i],
-                            nullptr,
-                            scratch_forces.data());
-        });
-        for_each_block(n_blocks(n_mine), [&](const unsigned int b) {
-          const BlockRange points = block_range(b, n_mine);
-          for (unsigned int k = points.begin; k < points.end; ++k)
-            add_point_forces(mine[k], &scratch_mine[3 * k]);
-        });
-      }
-    if (rank_points.in_order)
-      {
-        gather_from_all_ranks(scratch_mine.data(),
-                              rank_points.doubles_per_rank,
-                              g.data());
+        gather_from_all_ranks(mine, shared.doubles_per_rank, g.data());
         return;
       }
     scratch_all.resize(n_dofs());
-    gather_from_all_ranks(scratch_mine.data(),
-                          rank_points.doubles_per_rank,
-                          scratch_all.data());
+    gather_from_all_ranks(mine, shared.doubles_per_rank, scratch_all.data());
     for (unsigned int k = 0; k < data.n_points; ++k)
       for (unsigned int i = 0; i < 3; ++i)
-        g[3 * rank_points.points[k] + i] = scratch_all[3 * k + i];
+        g[3 * shared.points[k] + i] = scratch_all[3 * k + i];
   }
 
-  ElasticBody::RankPoints::RankPoints(const P1CellData &data)
+  ElasticBody::GradientParts::GradientParts(const P1CellData  &data,
+                                            const unsigned int threads)
+    : threads(threads)
+    , ranks(rank_count())
   {
     const unsigned int n_padded = data.n_padded_cells();
-    const unsigned int ranks = rank_count(), me = this_rank();
-    // The first cell of each point, and the rank whose blocks hold it.
+    const unsigned int me       = this_rank();
+    // The owner of each block of cells: a rank, and in this rank a part.
+    const unsigned int        n_cell_blocks = n_blocks(n_padded);
+    std::vector<unsigned int> block_rank(n_cell_blocks),
+      block_part(n_cell_blocks, 0);
+    for (unsigned int r = 0; r < ranks; ++r)
+      {
+        const BlockRange blocks = rank_blocks(n_cell_blocks, r);
+        std::fill(block_rank.begin() + blocks.begin,
+                  block_rank.begin() + blocks.end,
+                  r);
+      }
+    const BlockRange   mine    = rank_blocks(n_cell_blocks, me);
+    const unsigned int n_parts = std::min(threads, mine.end - mine.begin);
+    for (unsigned int b = mine.begin; b < mine.end; ++b)
+      block_part[b] = static_cast<unsigned long long>(b - mine.begin) *
+                      n_parts / (mine.end - mine.begin);
+    // Each point's owner: that of the block of its first cell.
     std::vector<unsigned int> first_cell(data.n_points, n_padded);
     for (unsigned int e = 0; e < n_padded; ++e)
       for (unsigned int a = 0; a < 4; ++a)
         first_cell[data.point[a][e]] =
           std::min(first_cell[data.point[a][e]], e);
-    std::vector<unsigned int> cell_rank(n_blocks(n_padded));
-    for (unsigned int r = 0; r < ranks; ++r)
-      {
-        const BlockRange blocks = rank_blocks(n_blocks(n_padded), r);
-        std::fill(cell_rank.begin() + blocks.begin,
-                  cell_rank.begin() + blocks.end,
-                  r);
-      }
-    std::vector<unsigned int> point_rank(data.n_points);
+    std::vector<unsigned int> point_rank(data.n_points),
+      point_part(data.n_points);
     for (unsigned int p = 0; p < data.n_points; ++p)
-      point_rank[p] = cell_rank[first_cell[p] / block_size];
+      {
+        point_rank[p] = block_rank[first_cell[p] / block_size];
+        point_part[p] = block_part[first_cell[p] / block_size];
+      }
 
     doubles_per_rank.assign(ranks, 0);
+    parts.resize(n_parts);
     for (unsigned int r = 0; r < ranks; ++r)
       {
         if (r == me)
@@ -510,6 +428,8 @@ namespace estep
         for (unsigned int p = 0; p < data.n_points; ++p)
           if (point_rank[p] == r)
             {
+              if (r == me)
+                parts[point_part[p]].positions.push_back(points.size() - first);
               points.push_back(p);
               doubles_per_rank[r] += 3;
             }
@@ -518,42 +438,35 @@ namespace estep
     for (unsigned int k = 0; k < points.size(); ++k)
       in_order = in_order && points[k] == k;
 
-    // The chunks of cells of assemble_gradient() with a vertex among this
-    // rank's points (whole chunks, so that each cell's forces have the bits
-    // of the serial loop), in runs of at most block_size cells.
-    for (unsigned int chunk = 0; chunk < n_padded; chunk += gradient_chunk)
+    // The chunks of cells with a vertex among a part's points, in runs of at
+    // most block_size cells, and the range of the points they touch.
+    for (unsigned int j = 0; j < n_parts; ++j)
       {
-        const unsigned int end    = std::min(chunk + gradient_chunk, n_padded);
-        bool               needed = false;
-        for (unsigned int e = chunk; e < end && !needed; ++e)
-          for (unsigned int a = 0; a < 4; ++a)
-            needed = needed || point_rank[data.point[a][e]] == me;
-        if (!needed)
-          continue;
-        if (!force_cells.empty() && force_cells.back().end == chunk &&
-            force_cells.back().end - force_cells.back().begin < block_size)
-          force_cells.back().end = end;
-        else
-          force_cells.push_back({chunk, end});
+        Part &part  = parts[j];
+        part.lowest = data.n_points;
+        for (unsigned int chunk = 0; chunk < n_padded; chunk += gradient_chunk)
+          {
+            const unsigned int end = std::min(chunk + gradient_chunk, n_padded);
+            bool               needed = false;
+            for (unsigned int e = chunk; e < end && !needed; ++e)
+              for (unsigned int a = 0; a < 4; ++a)
+                needed = needed || (point_rank[data.point[a][e]] == me &&
+                                    point_part[data.point[a][e]] == j);
+            if (!needed)
+              continue;
+            for (unsigned int e = chunk; e < end; ++e)
+              for (unsigned int a = 0; a < 4; ++a)
+                {
+                  part.lowest  = std::min(part.lowest, data.point[a][e]);
+                  part.highest = std::max(part.highest, data.point[a][e]);
+                }
+            if (!part.cells.empty() && part.cells.back().end == chunk &&
+                part.cells.back().end - part.cells.back().begin < block_size)
+              part.cells.back().end = end;
+            else
+              part.cells.push_back({chunk, end});
+          }
       }
-  }
-
-  ElasticBody::PointForces::PointForces(const P1CellData &data)
-    : start(data.n_points + 1, 0)
-  {
-    const unsigned int n_padded = data.n_padded_cells();
-    for (unsigned int e = 0; e < n_padded; ++e)
-      for (unsigned int a = 0; a < 4; ++a)
-        ++start[data.point[a][e] + 1];
-    for (unsigned int p = 0; p < data.n_points; ++p)
-      start[p + 1] += start[p];
-    offset.resize(start.back());
-    std::vector<unsigned int> next(start.begin(), start.end() - 1);
-    // Batch by batch, vertex by vertex, cell by cell: increasing offsets.
-    for (unsigned int batch = 0; batch < n_padded; batch += n_lanes)
-      for (unsigned int a = 0; a < 4; ++a)
-        for (unsigned int e = batch; e < batch + n_lanes; ++e)
-          offset[next[data.point[a][e]]++] = cell_force_offset(e, a);
   }
 
   std::unique_ptr<FreeFlight>

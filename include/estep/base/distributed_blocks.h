@@ -57,7 +57,8 @@ namespace estep
 
   /**
    * Rank r's @p counts[r] doubles, concatenated in rank order into @p all, on
-   * every rank (this rank's are @p mine). Collective.
+   * every rank (this rank's are @p mine, which may already be their place
+   * in @p all). Collective.
    */
   void
   gather_from_all_ranks(const double                    *mine,

@@ -222,58 +222,52 @@ namespace estep
     /** Scratch of energy(): J per cell. */
     mutable std::vector<double> scratch_J;
     /** Positions with one padding entry (the lane kernels read four doubles
-     * per point); forces, the same, or on several threads the forces of each
-     * cell (see gradient()). */
-    mutable std::vector<double> scratch_positions, scratch_forces;
-    /** The gradient of this rank's points, and of every rank's points, in
-     * the order of RankPoints (on several ranks). */
-    mutable std::vector<double> scratch_mine, scratch_all;
-    /** The gradient on several MPI ranks (see RankPoints), into @p g;
-     * scratch_positions holds the configuration. */
-    void
-    distributed_gradient(Vector &g) const;
-    /** The sum of the forces on point @p p from scratch_forces (in the order
-     * of point_forces) into @p sum[0..2]. */
-    void
-    add_point_forces(const unsigned int p, double *sum) const;
+     * per point). */
+    mutable std::vector<double> scratch_positions;
     /**
-     * For each point, where the forces the cells exert on it lie in the
-     * array of cell forces, in the order in which the serial gradient adds
-     * them: those of point p are offset[start[p]], ..., offset[start[p + 1]
-     * - 1]. Built on the first gradient on several threads.
+     * How gradient() is shared. The blocks of cells are divided among the MPI
+     * ranks (rank_blocks()), and each rank's among its threads in as many
+     * contiguous parts. A point belongs to the part whose blocks hold its
+     * first cell; the part computes its points' gradient with the serial
+     * loop's scatter over every cell that touches them (its own and, at its
+     * end, a few of the next part's), in their order. The scatter adds each
+     * point's forces in the serial order, so every part gives its points the
+     * bits of the serial loop, however the points are divided. Each rank then
+     * sends its points' gradient to every rank. Built for the numbers of
+     * threads and ranks of the first gradient, and again when they change.
      */
-    struct PointForces
+    struct GradientParts
     {
-      PointForces() = default;
-      explicit PointForces(const P1CellData &data);
-      std::vector<unsigned int> start;
-      std::vector<std::size_t>  offset;
-    };
-    mutable PointForces point_forces;
-    /**
-     * On several MPI ranks (see distributed_blocks.h): a point's gradient is
-     * computed by the rank whose blocks hold the first cell of the point, from
-     * the forces of all its cells (its own and some of the next ranks'), and
-     * then sent to every rank. Built on the first gradient on several ranks.
-     */
-    struct RankPoints
-    {
-      RankPoints() = default;
-      explicit RankPoints(const P1CellData &data);
-      /** The points of each rank in increasing order, rank after rank. */
-      std::vector<unsigned int> points;
-      /** How many of them each rank has, 3 per point (its doubles). */
-      std::vector<unsigned int> doubles_per_rank;
-      /** Where this rank's points start in points. */
-      unsigned int first = 0;
-      /** Whether points is 0, 1, 2, ... (the ranks' points are contiguous
-       * and in rank order): then the gradient is gathered in place. */
+      GradientParts() = default;
+      GradientParts(const P1CellData &data, const unsigned int threads);
+      /** The numbers of threads and ranks it was built for. */
+      unsigned int threads = 0, ranks = 0;
+      /** The points of each rank in increasing order, rank after rank, how
+       * many doubles (3 per point) each rank has, and where this rank's
+       * points start. */
+      std::vector<unsigned int> points, doubles_per_rank;
+      unsigned int              first = 0;
+      /** Whether points is 0, 1, 2, ...: then each rank's gradient is
+       * computed, and gathered, in place. */
       bool in_order = false;
-      /** The cells whose forces this rank's points need, in runs of whole
-       * chunks of the gradient's loop, at most block_size cells each. */
-      std::vector<BlockRange> force_cells;
+      struct Part
+      {
+        /** Its points, as positions among this rank's points. */
+        std::vector<unsigned int> positions;
+        /** The cells whose forces its points need: whole chunks of the
+         * gradient's loop (whose alignment changes the bits of the
+         * material's batch call), in increasing order. */
+        std::vector<BlockRange> cells;
+        /** The points these cells touch lie in [lowest, highest]. */
+        unsigned int lowest = 0, highest = 0;
+      };
+      std::vector<Part> parts;
     };
-    mutable RankPoints rank_points;
+    mutable GradientParts gradient_parts;
+    /** Per part, the forces its scatter adds up (only [lowest, highest]
+     * used); this rank's points' gradient, where not in place. */
+    mutable std::vector<std::vector<double>> part_forces;
+    mutable std::vector<double>              scratch_mine, scratch_all;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };
