@@ -42,6 +42,7 @@ namespace estep
   {
     const char *usage =
       "Usage: estep [options] INPUT.prm\n"
+      "       mpirun -np P estep [options] INPUT.prm   (P processes share the cells)\n"
       "       estep ccd FILE_OR_DIRECTORY...\n"
       "\n"
       "Energy-stepping for nonlinear elastodynamics and particle systems, on deal.II.\n"
@@ -56,7 +57,8 @@ namespace estep
       "  -s, --set \"Section/Entry=value\" override an entry of INPUT.prm (repeatable);\n"
       "                                 nested subsections are separated by '/'\n"
       "  --threads N                    run the loops over cells on N threads (the\n"
-      "                                 entry Threads; 0: one per core, the default)\n"
+      "                                 entry Threads; 0: one per core, the default;\n"
+      "                                 under mpirun, each process its share of them)\n"
       "  --resume                       continue the run from the checkpoint in its\n"
       "                                 output directory (Output/Checkpoint interval),\n"
       "                                 appending to its outputs; without a checkpoint\n"
