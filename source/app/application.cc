@@ -488,6 +488,24 @@ namespace estep
         }
     }
 
+    /** An output failed (a full disk): @p message on standard error and, if
+     * the disk still takes it, in a summary with status failed. */
+    void
+    report_output_failure(const std::string &summary_file,
+                          const RunRecord   &record,
+                          const std::string &message)
+    {
+      std::cerr << "estep: " << message << '\n';
+      try
+        {
+          write_file_atomically(
+            summary_file,
+            status_summary(record, "failed", message).to_string() + "\n");
+        }
+      catch (const std::exception &)
+        {}
+    }
+
     /** The PRM text of the parameters (what checkpoints compare). */
     std::string
     parameters_text(const dealii::ParameterHandler &prm)
@@ -683,16 +701,7 @@ namespace estep
             return exit_failed;
           // The output directory does not take the outputs (a full disk):
           // the run cannot start.
-          try
-            {
-              write_file_atomically(
-                summary_file,
-                status_summary(record, "failed", start_error).to_string() +
-                  "\n");
-            }
-          catch (const std::exception &)
-            {}
-          std::cerr << "estep: " << start_error << '\n';
+          report_output_failure(summary_file, record, start_error);
           return exit_failed;
         }
 
@@ -705,16 +714,7 @@ namespace estep
         {
           // An output of the first rank failed during the run; the other
           // ranks, which know nothing of it, are still stepping.
-          std::cerr << "estep: " << result.message << '\n';
-          try
-            {
-              write_file_atomically(
-                summary_file,
-                status_summary(record, "failed", result.message).to_string() +
-                  "\n");
-            }
-          catch (const std::exception &)
-            {}
+          report_output_failure(summary_file, record, result.message);
           end_all_ranks(exit_failed);
         }
       finish_postprocessors(postprocessors, result);
