@@ -630,11 +630,10 @@ namespace estep
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
-      // The other ranks hold the same state and write nothing.
-      const auto postprocessors =
-        writes_output ?
-          create_run_postprocessors(prm, problem, *integrator, parameters) :
-          std::vector<std::unique_ptr<Postprocessor>>();
+      // The other ranks hold the same state: they run only the
+      // postprocessors that write a part of their own.
+      auto postprocessors =
+        create_run_postprocessors(prm, problem, *integrator, parameters);
       const RunRecord record{problem,
                              *integrator,
                              postprocessors,
@@ -686,8 +685,16 @@ namespace estep
       try
         {
           if (checkpoint)
-            checkpoint->resume(postprocessors);
-          else
+            checkpoint->resume(postprocessors, !writes_output);
+          if (!writes_output)
+            postprocessors.erase(
+              std::remove_if(postprocessors.begin(),
+                             postprocessors.end(),
+                             [](const auto &postprocessor) {
+                               return !postprocessor->runs_on_every_rank();
+                             }),
+              postprocessors.end());
+          if (!checkpoint)
             for (const auto &postprocessor : postprocessors)
               postprocessor->start();
         }

@@ -7,6 +7,7 @@
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/json_writer.h>
 #include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_body.h>
@@ -35,20 +36,61 @@ namespace estep
       , interval(interval)
       , next_time(start_time)
       , mapping(dealii::FE_SimplexP<3>(1))
+      , rank(this_rank())
+      , ranks(rank_count())
     {
-      if (format == Format::vtu)
-        for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
-          {
-            const P1CellData         &cells = bodies.body(b).cell_data();
-            std::vector<unsigned int> tetrahedra(4 *
-                                                 std::size_t(cells.n_cells));
-            for (unsigned int e = 0; e < cells.n_cells; ++e)
-              for (unsigned int a = 0; a < 4; ++a)
-                tetrahedra[4 * e + a] = cells.point[a][e];
-            vtu.push_back(
-              std::make_unique<VtuFile>(cells.reference_position, tetrahedra));
-          }
+      if (format != Format::vtu)
+        return;
+      for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
+        {
+          const P1CellData &cells = bodies.body(b).cell_data();
+          if (ranks == 1)
+            {
+              std::vector<unsigned int> tetrahedra(4 *
+                                                   std::size_t(cells.n_cells));
+              for (unsigned int e = 0; e < cells.n_cells; ++e)
+                for (unsigned int a = 0; a < 4; ++a)
+                  tetrahedra[4 * e + a] = cells.point[a][e];
+              vtu.push_back(std::make_unique<VtuFile>(cells.reference_position,
+                                                      tetrahedra));
+              continue;
+            }
+          // This process's piece: the cells of its blocks and their points.
+          const BlockRange blocks =
+            rank_blocks(n_blocks(cells.n_padded_cells()), rank);
+          Piece piece;
+          piece.first_cell = std::min(blocks.begin * block_size, cells.n_cells);
+          piece.end_cell   = std::min(blocks.end * block_size, cells.n_cells);
+          constexpr unsigned int    unused = -1;
+          std::vector<unsigned int> local(cells.n_points, unused);
+          for (unsigned int e = piece.first_cell; e < piece.end_cell; ++e)
+            for (unsigned int a = 0; a < 4; ++a)
+              local[cells.point[a][e]] = 0;
+          std::vector<double> xyz;
+          for (unsigned int p = 0; p < cells.n_points; ++p)
+            if (local[p] != unused)
+              {
+                local[p] = piece.points.size();
+                piece.points.push_back(p);
+                for (unsigned int c = 0; c < 3; ++c)
+                  xyz.push_back(cells.reference_position[3 * p + c]);
+              }
+          std::vector<unsigned int> tetrahedra;
+          for (unsigned int e = piece.first_cell; e < piece.end_cell; ++e)
+            for (unsigned int a = 0; a < 4; ++a)
+              tetrahedra.push_back(local[cells.point[a][e]]);
+          vtu.push_back(std::make_unique<VtuFile>(xyz, tetrahedra));
+          pieces.push_back(std::move(piece));
+        }
     }
+
+    /** On several MPI processes, this process's piece of a body: the cells
+     * of its blocks, [first_cell, end_cell), and the points they use. */
+    struct Piece
+    {
+      unsigned int              first_cell = 0, end_cell = 0;
+      std::vector<unsigned int> points;
+    };
 
     const ElasticBodies        &bodies;
     const std::filesystem::path directory;
@@ -58,8 +100,14 @@ namespace estep
     const dealii::MappingFE<3>  mapping;
     /** Whether the system has obstacles to draw (fields/obstacles.vtu). */
     bool has_obstacles = false;
-    /** Each body's mesh, encoded once (format vtu). */
-    std::vector<std::unique_ptr<VtuFile>>       vtu;
+    /** This process and the number of processes: on several, each writes
+     * its piece of every body, and the first the .pvtu files and the
+     * series. */
+    const unsigned int rank, ranks;
+    /** Each body's mesh, or this process's piece of it, encoded once
+     * (format vtu). */
+    std::vector<std::unique_ptr<VtuFile>> vtu;
+    std::vector<Piece>                    pieces;
     std::vector<std::pair<double, std::string>> pvd_records;
     /** Snapshots not yet in solution.pvd, and when it was last written. */
     bool                                  pvd_pending = false;
@@ -103,7 +151,7 @@ namespace estep
     std::vector<unsigned int> triangles;
     self.bodies.obstacle_surface(points, triangles);
     self.has_obstacles = !triangles.empty();
-    if (self.has_obstacles && self.format == Format::vtu)
+    if (self.has_obstacles && self.format == Format::vtu && self.rank == 0)
       {
         const std::filesystem::path file =
           self.directory / "fields" / "obstacles.vtu";
@@ -151,7 +199,7 @@ namespace estep
         time = in.get<double>();
         file = in.get_string();
       }
-    if (!self.pvd_records.empty())
+    if (!self.pvd_records.empty() && self.rank == 0)
       self.write_pvd();
   }
 
@@ -164,8 +212,17 @@ namespace estep
   void
   FieldOutput::finish(const TimeLoopResult &result)
   {
-    if (result.status != RunStatus::failed && implementation->pvd_pending)
+    if (result.status != RunStatus::failed && implementation->pvd_pending &&
+        implementation->rank == 0)
       implementation->write_pvd();
+  }
+
+
+
+  bool
+  FieldOutput::runs_on_every_rank() const
+  {
+    return implementation->format == Format::vtu;
   }
 
 
@@ -222,7 +279,7 @@ namespace estep
         // lists only once it is complete. A file of an earlier run is
         // removed first: renaming over it or truncating it would make ext4
         // flush the new one to disk (seconds per run on a busy disk).
-        std::vector<std::string> pieces;
+        std::vector<std::string> files;
         for (unsigned int b = 0; b < n_bodies; ++b)
           {
             const ElasticBody &body = self.bodies.body(b);
@@ -234,29 +291,87 @@ namespace estep
             body.cell_fields(q, J, W);
             body.cell_stresses(q, stress, von_mises);
             if (n_bodies == 1)
-              std::snprintf(name, sizeof(name), "solution-%05u.vtu", n);
+              std::snprintf(name, sizeof(name), "solution-%05u", n);
             else
-              std::snprintf(
-                name, sizeof(name), "solution-%05u-%u.vtu", n, b + 1);
-            pieces.push_back(name);
-            const std::filesystem::path file = self.directory / "fields" / name;
+              std::snprintf(name, sizeof(name), "solution-%05u-%u", n, b + 1);
+            const std::string base = name;
+            std::vector<VtuFile::Field> point_fields = {{"displacement",
+                                                         3,
+                                                         &displacement},
+                                                        {"velocity", 3, &velocity}},
+                                        cell_fields  = {{"J", 1, &J},
+                                                       {"strain_energy_density",
+                                                        1,
+                                                        &W},
+                                                       {"cauchy_stress", 9, &stress},
+                                                       {"von_mises_stress",
+                                                        1,
+                                                        &von_mises}};
+            std::string file_name = base + ".vtu";
+            std::vector<std::vector<double>> piece_values;
+            if (self.ranks > 1)
+              {
+                // This process's piece: its points' and cells' values.
+                const Implementation::Piece &piece = self.pieces[b];
+                piece_values.reserve(point_fields.size() + cell_fields.size());
+                for (VtuFile::Field &field : point_fields)
+                  {
+                    auto &values = piece_values.emplace_back();
+                    for (const unsigned int p : piece.points)
+                      for (unsigned int c = 0; c < field.n_components; ++c)
+                        values.push_back(
+                          (*field.values)[field.n_components * p + c]);
+                    field.values = &values;
+                  }
+                for (VtuFile::Field &field : cell_fields)
+                  {
+                    field.values = &piece_values.emplace_back(
+                      field.values->begin() +
+                        std::size_t(field.n_components) * piece.first_cell,
+                      field.values->begin() +
+                        std::size_t(field.n_components) * piece.end_cell);
+                  }
+                file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
+              }
+            const std::filesystem::path file =
+              self.directory / "fields" / file_name;
             std::filesystem::remove(file);
             std::ofstream out(file);
-            self.vtu[b]->write(out,
-                               snapshot.t,
-                               n,
-                               {{"displacement", 3, &displacement},
-                                {"velocity", 3, &velocity}},
-                               {{"J", 1, &J},
-                                {"strain_energy_density", 1, &W},
-                                {"cauchy_stress", 9, &stress},
-                                {"von_mises_stress", 1, &von_mises}});
+            self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
             out.close();
             if (!out)
               throw std::runtime_error("Field output: cannot write <" +
                                        file.string() + ">.");
+            if (self.ranks > 1)
+              {
+                // The first process lists the pieces of all.
+                file_name = base + ".pvtu";
+                if (self.rank == 0)
+                  {
+                    std::vector<std::string> piece_files;
+                    for (unsigned int r = 0; r < self.ranks; ++r)
+                      piece_files.push_back(base + "-p" + std::to_string(r) +
+                                            ".vtu");
+                    std::ostringstream pvtu;
+                    VtuFile::write_parallel(pvtu,
+                                            piece_files,
+                                            point_fields,
+                                            cell_fields);
+                    write_file_atomically(
+                      (self.directory / "fields" / file_name).string(),
+                      pvtu.str());
+                  }
+              }
+            files.push_back(file_name);
           }
-        std::string series_entry = "fields/" + pieces[0];
+        std::string series_entry = "fields/" + files[0];
+        if (self.rank > 0)
+          {
+            // The series is the first process's; the others count the
+            // snapshots alike.
+            self.pvd_records.emplace_back(snapshot.t, series_entry);
+            return;
+          }
         if (n_bodies > 1 || self.has_obstacles)
           {
             // The bodies of one snapshot as a multiblock data set.
@@ -267,7 +382,7 @@ namespace estep
                    "byte_order=\"LittleEndian\">\n  <vtkMultiBlockDataSet>\n";
             for (unsigned int b = 0; b < n_bodies; ++b)
               vtm << "    <DataSet index=\"" << b << "\" name=\"body " << b + 1
-                  << "\" file=\"" << pieces[b] << "\"/>\n";
+                  << "\" file=\"" << files[b] << "\"/>\n";
             if (self.has_obstacles)
               vtm << "    <DataSet index=\"" << n_bodies
                   << "\" name=\"obstacles\" file=\"obstacles.vtu\"/>\n";

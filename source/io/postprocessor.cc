@@ -40,6 +40,14 @@ namespace estep
 
 
 
+  bool
+  Postprocessor::runs_on_every_rank() const
+  {
+    return false;
+  }
+
+
+
   std::string
   Postprocessor::final_report() const
   {

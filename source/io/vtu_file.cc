@@ -158,6 +158,44 @@ namespace estep
 
 
   void
+  VtuFile::write_parallel(std::ostream                   &out,
+                          const std::vector<std::string> &pieces,
+                          const std::vector<Field>       &point_fields,
+                          const std::vector<Field>       &cell_fields)
+  {
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\""
+        << (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__ ? "BigEndian" :
+                                                     "LittleEndian")
+        << "\" header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n"
+        << "<PUnstructuredGrid GhostLevel=\"0\">\n"
+        << "<PPoints>\n<PDataArray type=\"Float32\" "
+           "NumberOfComponents=\"3\"/>\n</PPoints>\n";
+    for (const auto &[section, fields] :
+         {std::pair{"PPointData", &point_fields},
+          std::pair{"PCellData", &cell_fields}})
+      {
+        out << "<" << section << ">\n";
+        for (const Field &field : *fields)
+          {
+            out << "<PDataArray type=\"Float32\" Name=\"" << field.name
+                << "\"";
+            if (field.n_components > 1)
+              out << " NumberOfComponents=\"" << field.n_components << "\"";
+            out << "/>\n";
+          }
+        out << "</" << section << ">\n";
+      }
+    for (const std::string &piece : pieces)
+      out << "<Piece Source=\"" << piece << "\"/>\n";
+    out << "</PUnstructuredGrid>\n</VTKFile>\n";
+    if (!out)
+      throw std::runtime_error("VtuFile: writing the file failed.");
+  }
+
+
+
+  void
   VtuFile::write(std::ostream             &out,
                  const double              time,
                  const unsigned int        cycle,

@@ -44,9 +44,11 @@ same_on_ranks() {
   echo "$name: $(grep -o '"steps": [0-9]*' "$name-1x1/summary.json"), identical on 1 process and on 2 processes of 1 and 2 threads"
 }
 
-# The cube, 24,000 cells (24 blocks of cells).
+# The cube, 24,000 cells (24 blocks of cells). (Without its field output: the checkpoint
+# records the series, whose files are named differently on 2 processes; see below.)
 cube=("$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10"
-      --set "Time integration/End time=1.5" --set "Output/Checkpoint interval=0.25")
+      --set "Time integration/End time=1.5" --set "Output/Checkpoint interval=0.25"
+      --set "Postprocessors/List=history, step histogram, progress")
 same_on_ranks cube "${cube[@]}"
 
 # The colliding balls during their contact (about 3,000 cells per ball, 3 blocks each).
@@ -77,6 +79,71 @@ grep "resuming from" resumed.txt
 for file in checkpoint.bin history.csv; do
   cmp -s whole/$file resumed/$file || fail "resumed on 1 process: $file differs from the run on 1"
 done
+
+# Field output on 2 processes: each writes its piece (the cells of its blocks), the first the
+# .pvtu joining them, which the series lists; the pieces hold the cells, points and values of the
+# file one process writes. Then a run with field output stopped by SIGTERM and resumed on 2
+# processes continues the series and ends as the run without a stop.
+fields=("${cube[@]}" --set "Postprocessors/List=history, progress, field output"
+        --set "Postprocessors/Field output/Interval=0.5")
+"$ESTEP" "${fields[@]}" --threads 1 --set "Output directory=fields-1" > fields-1.txt 2>&1 ||
+  fail "field output on 1 process: $(tail -2 fields-1.txt)"
+for run in fields-2 fields-whole; do
+  "${mpi[@]}" "$ESTEP" "${fields[@]}" --threads 1 --set "Output directory=$run" > $run.txt 2>&1 ||
+    fail "field output on 2 processes: $(tail -2 $run.txt)"
+done
+/usr/bin/python3 - << 'PY' || fail "field output on 2 processes: the pieces do not hold the snapshot"
+import base64, re, struct, sys, zlib
+def arrays(path):
+    text = open(path).read()
+    found = {}
+    for kind, name, encoded in re.findall(
+            r'<DataArray type="(\w+)"(?: Name="(\w+)")?[^>]*format="binary">\s*(\S+)\s*</DataArray>', text):
+        raw = zlib.decompress(base64.b64decode(encoded[24:]))
+        code = {"Float32": "f", "Int32": "i", "UInt8": "B"}[kind]
+        found[name or "points"] = struct.unpack("<%d%s" % (len(raw) // struct.calcsize(code), code), raw)
+    return found
+whole = arrays("fields-1/fields/solution-00002.vtu")
+pvtu = open("fields-2/fields/solution-00002.pvtu").read()
+pieces = re.findall(r'<Piece Source="([^"]+)"', pvtu)
+assert pieces == ["solution-00002-p0.vtu", "solution-00002-p1.vtu"], pieces
+assert "fields/solution-00002.pvtu" in open("fields-2/solution.pvd").read()
+point_fields = [("points", 3), ("displacement", 3), ("velocity", 3)]
+cell_fields = [("J", 1), ("strain_energy_density", 1), ("cauchy_stress", 9), ("von_mises_stress", 1)]
+first = 0
+for piece in pieces:
+    part = arrays("fields-2/fields/" + piece)
+    n = len(part["connectivity"]) // 4
+    for e in range(n):
+        for a in range(4):
+            p, q = part["connectivity"][4 * e + a], whole["connectivity"][4 * (first + e) + a]
+            for name, k in point_fields:
+                assert part[name][k * p:k * p + k] == whole[name][k * q:k * q + k], (piece, e, name)
+        for name, k in cell_fields:
+            assert part[name][k * e:k * e + k] == whole[name][k * (first + e):k * (first + e) + k], (piece, e, name)
+    first += n
+assert 4 * first == len(whole["connectivity"]), first
+print(f"field output on 2 processes: {len(pieces)} pieces of {first} cells in all, as on 1 process")
+PY
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+  --set "Output directory=fields-whole" > fields-whole.txt 2>&1 ||
+  fail "field output on 2 processes to t = 8: $(tail -2 fields-whole.txt)"
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+  --set "Output directory=fields-resumed" > fields-stopped.txt 2>&1 &
+pid=$!
+while kill -0 $pid 2> /dev/null && [[ ! -f fields-resumed/checkpoint.bin ]]; do sleep 0.02; done
+kill -TERM $pid 2> /dev/null
+wait $pid
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+  --set "Output directory=fields-resumed" --resume > fields-resumed.txt 2>&1 ||
+  fail "the resume on 2 processes: $(tail -2 fields-resumed.txt)"
+for file in checkpoint.bin history.csv fields/solution-00016.pvtu fields/solution-00016-p1.vtu; do
+  cmp -s fields-whole/$file fields-resumed/$file ||
+    fail "field output resumed on 2 processes: $file differs from the run without a stop"
+done
+# (deal.II writes the time of writing into solution.pvd.)
+cmp -s <(grep -v generated fields-whole/solution.pvd) <(grep -v generated fields-resumed/solution.pvd) ||
+  fail "field output resumed on 2 processes: solution.pvd differs from the run without a stop"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {

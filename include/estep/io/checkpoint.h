@@ -54,10 +54,12 @@ namespace estep
     restore(TimeIntegrator &integrator) const;
 
     /** Let the postprocessors resume their outputs (once the output
-     * directory is ready). */
+     * directory is ready): all of them, or, if @p only_those_on_every_rank, those
+     * that run on every MPI process (see Postprocessor::runs_on_every_rank()),
+     * as the other processes do. */
     void
-    resume(
-      const std::vector<std::unique_ptr<Postprocessor>> &postprocessors) const;
+    resume(const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
+           const bool only_those_on_every_rank = false) const;
 
   private:
     std::string file;

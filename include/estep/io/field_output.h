@@ -26,7 +26,10 @@ namespace estep
    * last rewrite is a second old or more, and by finish(): it is valid while
    * the run goes on, lists only complete files and lags at most a second
    * behind them (rewriting it after every snapshot cost seconds on a slow
-   * disk, which ext4 makes flush a file renamed over another). Format "hdf5":
+   * disk, which ext4 makes flush a file renamed over another). On several MPI
+   * processes each writes its piece of a body, the cells of its blocks
+   * (solution-NNNNN-pR.vtu for process R), and the first the
+   * solution-NNNNN.pvtu that joins them, which the series lists. Format "hdf5":
    * fields/solution-NNNNN.h5 with the time series solution.xdmf (one body;
    * through MPI, which start() starts if needed).
    */
@@ -68,6 +71,10 @@ namespace estep
      * disk may not take it). */
     void
     finish(const TimeLoopResult &result) override;
+
+    /** With format vtu: every MPI process writes its piece of each body. */
+    bool
+    runs_on_every_rank() const override;
 
     /** Number of snapshots written. */
     unsigned int

@@ -56,6 +56,17 @@ namespace estep
     virtual void
     add_to_summary(JsonObject &summary) const;
 
+    /**
+     * Whether, on several MPI processes, it runs on every one (each writing
+     * its own part, as field output writes a piece per process) rather than
+     * on the first alone. Such a postprocessor must not call what the
+     * processes compute together (MechanicalSystem::energy(),
+     * TimeIntegrator::dense_output(); dense_state() is fine), and only the
+     * first process's state goes into checkpoints. The default: false.
+     */
+    virtual bool
+    runs_on_every_rank() const;
+
     /** A line for the terminal at the end of the run, or "" (the default). */
     virtual std::string
     final_report() const;

@@ -52,6 +52,17 @@ namespace estep
           const std::vector<Field> &point_fields,
           const std::vector<Field> &cell_fields) const;
 
+    /**
+     * Writes the .pvtu file of a mesh written in @p pieces (.vtu files of
+     * write(), named relative to it) with fields named and sized as
+     * @p point_fields and @p cell_fields (their values are not read).
+     */
+    static void
+    write_parallel(std::ostream                   &out,
+                   const std::vector<std::string> &pieces,
+                   const std::vector<Field>       &point_fields,
+                   const std::vector<Field>       &cell_fields);
+
     /** The encoding of a data array: zlib (level 1) and base64, with VTK's
      * block header. */
     static std::string
