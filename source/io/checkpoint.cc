@@ -257,7 +257,7 @@ namespace estep
   void
   Checkpoint::resume(
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
-    const bool                                         only_those_on_every_rank) const
+    const bool only_those_on_every_rank) const
   {
     if (postprocessors.size() != postprocessor_states.size())
       throw std::runtime_error("The checkpoint <" + file +
@@ -267,7 +267,8 @@ namespace estep
                                std::to_string(postprocessors.size()) + ".");
     for (std::size_t i = 0; i < postprocessors.size(); ++i)
       {
-        if (only_those_on_every_rank && !postprocessors[i]->runs_on_every_rank())
+        if (only_those_on_every_rank &&
+            !postprocessors[i]->runs_on_every_rank())
           continue;
         StateReader reader(postprocessor_states[i]);
         postprocessors[i]->resume(reader);

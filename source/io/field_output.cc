@@ -106,8 +106,8 @@ namespace estep
     const unsigned int rank, ranks;
     /** Each body's mesh, or this process's piece of it, encoded once
      * (format vtu). */
-    std::vector<std::unique_ptr<VtuFile>> vtu;
-    std::vector<Piece>                    pieces;
+    std::vector<std::unique_ptr<VtuFile>>       vtu;
+    std::vector<Piece>                          pieces;
     std::vector<std::pair<double, std::string>> pvd_records;
     /** Snapshots not yet in solution.pvd, and when it was last written. */
     bool                                  pvd_pending = false;
@@ -295,19 +295,14 @@ namespace estep
             else
               std::snprintf(name, sizeof(name), "solution-%05u-%u", n, b + 1);
             const std::string base = name;
-            std::vector<VtuFile::Field> point_fields = {{"displacement",
-                                                         3,
-                                                         &displacement},
-                                                        {"velocity", 3, &velocity}},
-                                        cell_fields  = {{"J", 1, &J},
-                                                       {"strain_energy_density",
-                                                        1,
-                                                        &W},
-                                                       {"cauchy_stress", 9, &stress},
-                                                       {"von_mises_stress",
-                                                        1,
-                                                        &von_mises}};
-            std::string file_name = base + ".vtu";
+            std::vector<VtuFile::Field>
+              point_fields = {{"displacement", 3, &displacement},
+                              {"velocity", 3, &velocity}},
+              cell_fields  = {{"J", 1, &J},
+                              {"strain_energy_density", 1, &W},
+                              {"cauchy_stress", 9, &stress},
+                              {"von_mises_stress", 1, &von_mises}};
+            std::string                      file_name = base + ".vtu";
             std::vector<std::vector<double>> piece_values;
             if (self.ranks > 1)
               {

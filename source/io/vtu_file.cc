@@ -178,8 +178,7 @@ namespace estep
         out << "<" << section << ">\n";
         for (const Field &field : *fields)
           {
-            out << "<PDataArray type=\"Float32\" Name=\"" << field.name
-                << "\"";
+            out << "<PDataArray type=\"Float32\" Name=\"" << field.name << "\"";
             if (field.n_components > 1)
               out << " NumberOfComponents=\"" << field.n_components << "\"";
             out << "/>\n";

@@ -54,9 +54,9 @@ namespace estep
     restore(TimeIntegrator &integrator) const;
 
     /** Let the postprocessors resume their outputs (once the output
-     * directory is ready): all of them, or, if @p only_those_on_every_rank, those
-     * that run on every MPI process (see Postprocessor::runs_on_every_rank()),
-     * as the other processes do. */
+     * directory is ready): all of them, or, if @p only_those_on_every_rank,
+     * those that run on every MPI process (see
+     * Postprocessor::runs_on_every_rank()), as the other processes do. */
     void
     resume(const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
            const bool only_those_on_every_rank = false) const;
