@@ -16,50 +16,20 @@
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/meshes.h>
 #include <estep/materials/neo_hookean.h>
-#include <estep/time_integration/energy_stepping.h>
+
+#include "centred_cube_run.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <thread>
 
 namespace
 {
-  struct Run
-  {
-    double        seconds;
-    unsigned int  steps;
-    double        time;
-    estep::Vector q, v;
-  };
-
-  /** Energy-stepping of @p body from the centred rotation to @p end_time or
-   * @p max_steps steps, whichever comes first. */
-  Run
-  run(const estep::ElasticBody &body,
-      const double              end_time,
-      const unsigned int        max_steps)
-  {
-    const estep::Vector q = body.reference_configuration();
-    const estep::Vector v =
-      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, {{0.5, 0.5, 0.5}});
-    estep::EnergyStepping stepping(body, 1e-5);
-    stepping.initialize(0., q, v);
-    const auto start = std::chrono::steady_clock::now();
-    while (stepping.time() < end_time && stepping.n_steps() < max_steps)
-      stepping.step(end_time);
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-        .count();
-    return {seconds,
-            static_cast<unsigned int>(stepping.n_steps()),
-            stepping.time(),
-            stepping.position(),
-            stepping.velocity()};
-  }
+  using benchmark_cube::Run;
+  using benchmark_cube::run;
 
   /** The first process runs alone; the others sleep until it is done (a
    * rank waiting in MPI polls, which would take a core from it). */
@@ -82,13 +52,6 @@ namespace
       }
     estep::distribute_blocks_over_mpi_ranks(true);
     return result;
-  }
-
-  bool
-  same_bits(const estep::Vector &a, const estep::Vector &b)
-  {
-    return a.size() == b.size() &&
-           std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
   }
 } // namespace
 
@@ -151,10 +114,7 @@ main(int argc, char **argv)
                   1e9 * alone.seconds / alone.steps / cells,
                   1e9 * shared.seconds / shared.steps / cells,
                   alone.seconds / shared.seconds,
-                  alone.steps == shared.steps && same_bits(alone.q, shared.q) &&
-                      same_bits(alone.v, shared.v) ?
-                    "yes" :
-                    "NO");
+                  benchmark_cube::same_end(alone, shared) ? "yes" : "NO");
     }
   return 0;
 }

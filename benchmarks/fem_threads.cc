@@ -16,27 +16,19 @@
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/meshes.h>
 #include <estep/materials/neo_hookean.h>
-#include <estep/time_integration/energy_stepping.h>
+
+#include "centred_cube_run.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 
 namespace
 {
-  struct Run
-  {
-    double        seconds;
-    unsigned int  steps;
-    double        time;
-    estep::Vector q, v;
-  };
+  using benchmark_cube::Run;
 
-  /** Energy-stepping of @p body from the centred rotation to @p end_time or
-   * @p max_steps steps, whichever comes first, on @p threads threads. */
+  /** The run of benchmark_cube::run() on @p threads threads. */
   Run
   run(const estep::ElasticBody &body,
       const unsigned int        threads,
@@ -44,29 +36,7 @@ namespace
       const unsigned int        max_steps)
   {
     estep::set_thread_count(threads);
-    const estep::Vector q = body.reference_configuration();
-    const estep::Vector v =
-      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, {{0.5, 0.5, 0.5}});
-    estep::EnergyStepping stepping(body, 1e-5);
-    stepping.initialize(0., q, v);
-    const auto start = std::chrono::steady_clock::now();
-    while (stepping.time() < end_time && stepping.n_steps() < max_steps)
-      stepping.step(end_time);
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-        .count();
-    return {seconds,
-            static_cast<unsigned int>(stepping.n_steps()),
-            stepping.time(),
-            stepping.position(),
-            stepping.velocity()};
-  }
-
-  bool
-  same_bits(const estep::Vector &a, const estep::Vector &b)
-  {
-    return a.size() == b.size() &&
-           std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+    return benchmark_cube::run(body, end_time, max_steps);
   }
 } // namespace
 
@@ -121,11 +91,7 @@ main(int argc, char **argv)
                   1e9 * serial.seconds / serial.steps / cells,
                   1e9 * parallel.seconds / parallel.steps / cells,
                   serial.seconds / parallel.seconds,
-                  serial.steps == parallel.steps &&
-                      same_bits(serial.q, parallel.q) &&
-                      same_bits(serial.v, parallel.v) ?
-                    "yes" :
-                    "NO");
+                  benchmark_cube::same_end(serial, parallel) ? "yes" : "NO");
     }
   return 0;
 }

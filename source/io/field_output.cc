@@ -25,6 +25,14 @@ namespace estep
 {
   struct FieldOutput::Implementation
   {
+    /** On several MPI processes, this process's piece of a body: the cells
+     * of its blocks, [first_cell, end_cell), and the points they use. */
+    struct Piece
+    {
+      unsigned int              first_cell = 0, end_cell = 0;
+      std::vector<unsigned int> points;
+    };
+
     Implementation(const ElasticBodies &bodies,
                    const std::string   &directory,
                    const Format         format,
@@ -83,14 +91,6 @@ namespace estep
           pieces.push_back(std::move(piece));
         }
     }
-
-    /** On several MPI processes, this process's piece of a body: the cells
-     * of its blocks, [first_cell, end_cell), and the points they use. */
-    struct Piece
-    {
-      unsigned int              first_cell = 0, end_cell = 0;
-      std::vector<unsigned int> points;
-    };
 
     const ElasticBodies        &bodies;
     const std::filesystem::path directory;
