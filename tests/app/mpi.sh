@@ -2,7 +2,8 @@
 # MPI: a run gives the same trajectory to the last bit on 1 process and on 2 MPI processes (of 1
 # and of 2 threads): the ranks share the blocks of cells, and every rank adds the blocks' sums in
 # block order. With and without contact. A run on 2 processes ended by SIGTERM resumes on 1 to
-# the same end. A system without elastic cells, or with fewer cells than processes, is refused.
+# the same end, and one on 1 resumes on 2. Field output writes a piece per process. A system
+# without elastic cells, or with fewer cells than processes, is refused.
 # Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
 # MPIEXEC, the MPI launcher.
@@ -78,6 +79,19 @@ grep -q '"status": "interrupted"' resumed/summary.json ||
 grep "resuming from" resumed.txt
 for file in checkpoint.bin history.csv; do
   cmp -s whole/$file resumed/$file || fail "resumed on 1 process: $file differs from the run on 1"
+done
+
+# And the other way round: a run on 1 process stopped by SIGTERM, resumed on 2.
+"$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed-on-2" > stopped-1.txt 2>&1 &
+pid=$!
+while kill -0 $pid 2> /dev/null && [[ ! -f resumed-on-2/checkpoint.bin ]]; do sleep 0.02; done
+kill -TERM $pid 2> /dev/null
+wait $pid
+"${mpi[@]}" "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed-on-2" --resume \
+  > resumed-on-2.txt 2>&1 || fail "the resume on 2 processes: $(tail -2 resumed-on-2.txt)"
+for file in checkpoint.bin history.csv; do
+  cmp -s whole/$file resumed-on-2/$file ||
+    fail "stopped on 1 process, resumed on 2: $file differs from the run on 1"
 done
 
 # Field output on 2 processes: each writes its piece (the cells of its blocks), the first the
