@@ -13,7 +13,7 @@
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
-#include <estep/fem/elastic_body.h>
+#include <estep/fem/elastic_bodies.h>
 #include <estep/io/checkpoint.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
@@ -121,16 +121,13 @@ namespace estep
       const unsigned int ranks = rank_count();
       if (ranks == 1)
         return;
-      const auto *bodies = dynamic_cast<const ElasticBodies *>(&system);
-      if (bodies == nullptr)
+      const unsigned long long cells = elastic_cells(system);
+      if (cells == 0)
         throw std::runtime_error(
           "estep was started as " + std::to_string(ranks) +
           " MPI processes, but the " + system.name() +
           " has no elastic body whose cells they could share. Run it as "
           "one process; it uses every core (--threads).");
-      unsigned long long cells = 0;
-      for (unsigned int b = 0; b < bodies->n_bodies(); ++b)
-        cells += bodies->body(b).n_cells();
       if (cells < ranks)
         throw std::runtime_error(
           "estep was started as " + std::to_string(ranks) +

@@ -661,6 +661,18 @@ namespace estep
 
 
 
+  unsigned long long
+  elastic_cells(const MechanicalSystem &system)
+  {
+    const auto        *bodies = dynamic_cast<const ElasticBodies *>(&system);
+    unsigned long long cells  = 0;
+    for (unsigned int b = 0; bodies != nullptr && b < bodies->n_bodies(); ++b)
+      cells += bodies->body(b).n_cells();
+    return cells;
+  }
+
+
+
   void
   ElasticBodies::obstacle_surface(std::vector<double>       &points,
                                   std::vector<unsigned int> &triangles) const

@@ -45,6 +45,14 @@ namespace estep
     obstacle_surface(std::vector<double>       &points,
                      std::vector<unsigned int> &triangles) const;
   };
+
+  /**
+   * The cells of the elastic bodies of @p system, which a run on several MPI
+   * processes shares among them; 0 if the system is not made of elastic
+   * bodies (it is not an ElasticBodies).
+   */
+  unsigned long long
+  elastic_cells(const MechanicalSystem &system);
 } // namespace estep
 
 #endif
