@@ -601,44 +601,51 @@ namespace estep
 {
   void
   ElasticBody::cell_fields(const Vector        &q,
+                           const BlockRange     cells,
                            std::vector<double> &J,
                            std::vector<double> &energy_density) const
   {
     AssertDimension(q.size(), n_dofs());
-    J.resize(data.n_cells);
-    energy_density.resize(data.n_cells);
+    Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
+           dealii::ExcInternalError());
+    J.resize(cells.end - cells.begin);
+    energy_density.resize(cells.end - cells.begin);
     const double c  = body_material->quadratic_modulus();
     const double f1 = body_material->volumetric_energy(1.);
-    for (unsigned int e = 0; e < data.n_cells; ++e)
+    for (unsigned int e = cells.begin; e < cells.end; ++e)
       {
         double F[9], C[9];
         internal::deformation_gradient(q.data(), data, e, F);
         internal::cofactor(F, C);
-        J[e]              = internal::determinant(F, C);
-        energy_density[e] = J[e] > 0. ?
-                              body_material->volumetric_energy(J[e]) - f1 +
-                                0.5 * c * (internal::contract(F, F) - 3.) :
-                              std::numeric_limits<double>::infinity();
+        const double Je    = internal::determinant(F, C);
+        J[e - cells.begin] = Je;
+        energy_density[e - cells.begin] =
+          Je > 0. ? body_material->volumetric_energy(Je) - f1 +
+                      0.5 * c * (internal::contract(F, F) - 3.) :
+                    std::numeric_limits<double>::infinity();
       }
   }
 
   void
   ElasticBody::cell_stresses(const Vector        &q,
+                             const BlockRange     cells,
                              std::vector<double> &cauchy,
                              std::vector<double> &von_mises) const
   {
     AssertDimension(q.size(), n_dofs());
-    cauchy.resize(9 * std::size_t(data.n_cells));
-    von_mises.resize(data.n_cells);
+    Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
+           dealii::ExcInternalError());
+    cauchy.resize(9 * std::size_t(cells.end - cells.begin));
+    von_mises.resize(cells.end - cells.begin);
     const double c = body_material->quadratic_modulus();
-    for (unsigned int e = 0; e < data.n_cells; ++e)
+    for (unsigned int e = cells.begin; e < cells.end; ++e)
       {
         double F[9], C[9];
         internal::deformation_gradient(q.data(), data, e, F);
         internal::cofactor(F, C);
         const double J     = internal::determinant(F, C);
         const double df    = body_material->volumetric_derivative(J);
-        double      *sigma = &cauchy[9 * std::size_t(e)];
+        double      *sigma = &cauchy[9 * std::size_t(e - cells.begin)];
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)
             {
@@ -655,7 +662,7 @@ namespace estep
               const double s = sigma[3 * i + j] - (i == j ? mean : 0.);
               ss += s * s;
             }
-        von_mises[e] = std::sqrt(1.5 * ss);
+        von_mises[e - cells.begin] = std::sqrt(1.5 * ss);
       }
   }
 

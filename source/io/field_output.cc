@@ -25,11 +25,11 @@ namespace estep
 {
   struct FieldOutput::Implementation
   {
-    /** On several MPI processes, this process's piece of a body: the cells
-     * of its blocks, [first_cell, end_cell), and the points they use. */
+    /** This process's piece of a body: the cells of its blocks (all on one
+     * process) and, on several, the points they use. */
     struct Piece
     {
-      unsigned int              first_cell = 0, end_cell = 0;
+      BlockRange                cells;
       std::vector<unsigned int> points;
     };
 
@@ -61,17 +61,18 @@ namespace estep
                   tetrahedra[4 * e + a] = cells.point[a][e];
               vtu.push_back(std::make_unique<VtuFile>(cells.reference_position,
                                                       tetrahedra));
+              pieces.push_back({{0, cells.n_cells}, {}});
               continue;
             }
           // This process's piece: the cells of its blocks and their points.
           const BlockRange blocks =
             rank_blocks(n_blocks(cells.n_padded_cells()), rank);
           Piece piece;
-          piece.first_cell = std::min(blocks.begin * block_size, cells.n_cells);
-          piece.end_cell   = std::min(blocks.end * block_size, cells.n_cells);
+          piece.cells = {std::min(blocks.begin * block_size, cells.n_cells),
+                         std::min(blocks.end * block_size, cells.n_cells)};
           constexpr unsigned int    unused = -1;
           std::vector<unsigned int> local(cells.n_points, unused);
-          for (unsigned int e = piece.first_cell; e < piece.end_cell; ++e)
+          for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
             for (unsigned int a = 0; a < 4; ++a)
               local[cells.point[a][e]] = 0;
           std::vector<double> xyz;
@@ -84,7 +85,7 @@ namespace estep
                   xyz.push_back(cells.reference_position[3 * p + c]);
               }
           std::vector<unsigned int> tetrahedra;
-          for (unsigned int e = piece.first_cell; e < piece.end_cell; ++e)
+          for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
             for (unsigned int a = 0; a < 4; ++a)
               tetrahedra.push_back(local[cells.point[a][e]]);
           vtu.push_back(std::make_unique<VtuFile>(xyz, tetrahedra));
@@ -282,14 +283,15 @@ namespace estep
         std::vector<std::string> files;
         for (unsigned int b = 0; b < n_bodies; ++b)
           {
-            const ElasticBody &body = self.bodies.body(b);
+            const ElasticBody           &body  = self.bodies.body(b);
+            const Implementation::Piece &piece = self.pieces[b];
             self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
             std::vector<double> displacement(q.begin(), q.end()),
               velocity(v.begin(), v.end()), J, W, stress, von_mises;
             for (unsigned int k = 0; k < displacement.size(); ++k)
               displacement[k] -= body.cell_data().reference_position[k];
-            body.cell_fields(q, J, W);
-            body.cell_stresses(q, stress, von_mises);
+            body.cell_fields(q, piece.cells, J, W);
+            body.cell_stresses(q, piece.cells, stress, von_mises);
             if (n_bodies == 1)
               std::snprintf(name, sizeof(name), "solution-%05u", n);
             else
@@ -306,9 +308,9 @@ namespace estep
             std::vector<std::vector<double>> piece_values;
             if (self.ranks > 1)
               {
-                // This process's piece: its points' and cells' values.
-                const Implementation::Piece &piece = self.pieces[b];
-                piece_values.reserve(point_fields.size() + cell_fields.size());
+                // This process's piece: its points' values (the cell fields
+                // are its cells' already).
+                piece_values.reserve(point_fields.size());
                 for (VtuFile::Field &field : point_fields)
                   {
                     auto &values = piece_values.emplace_back();
@@ -317,14 +319,6 @@ namespace estep
                         values.push_back(
                           (*field.values)[field.n_components * p + c]);
                     field.values = &values;
-                  }
-                for (VtuFile::Field &field : cell_fields)
-                  {
-                    field.values = &piece_values.emplace_back(
-                      field.values->begin() +
-                        std::size_t(field.n_components) * piece.first_cell,
-                      field.values->begin() +
-                        std::size_t(field.n_components) * piece.end_cell);
                   }
                 file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
               }
@@ -402,7 +396,7 @@ namespace estep
       velocity(v.begin(), v.end()), J, W;
     for (unsigned int k = 0; k < displacement.size(); ++k)
       displacement[k] -= body.cell_data().reference_position[k];
-    body.cell_fields(q, J, W);
+    body.cell_fields(q, {0, body.n_cells()}, J, W);
     dealii::Vector<double> displacement_vector(displacement.begin(),
                                                displacement.end()),
       velocity_vector(velocity.begin(), velocity.end()),

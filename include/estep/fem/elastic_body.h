@@ -174,23 +174,26 @@ namespace estep
     /** @} */
 
     /**
-     * The Cauchy stress of every cell at the configuration @p q, for output:
-     * @p cauchy holds 9 entries per cell (row-major), sigma = f'(J) I + c/J F
-     * F^T (from P = f'(J) J F^-T + c F), and @p von_mises the von Mises stress
-     * (3/2 s:s)^(1/2) of its deviator s. Every cell must have J > 0.
+     * The Cauchy stress of the cells @p cells at the configuration @p q, for
+     * output: @p cauchy holds 9 entries per cell (row-major), sigma = f'(J) I
+     * + c/J F F^T (from P = f'(J) J F^-T + c F), and @p von_mises the von
+     * Mises stress (3/2 s:s)^(1/2) of its deviator s, for cells.begin,
+     * cells.begin + 1, ... Every cell must have J > 0.
      */
     void
     cell_stresses(const Vector        &q,
+                  const BlockRange     cells,
                   std::vector<double> &cauchy,
                   std::vector<double> &von_mises) const;
 
     /**
-     * Per-cell fields of the configuration @p q, for output: the volume ratio
-     * J = det F and the strain energy density W(F) - W(I) (energy per unit
-     * reference volume; +infinity where J <= 0).
+     * Per-cell fields of the cells @p cells at the configuration @p q, for
+     * output: the volume ratio J = det F and the strain energy density W(F) -
+     * W(I) (energy per unit reference volume; +infinity where J <= 0).
      */
     void
     cell_fields(const Vector        &q,
+                const BlockRange     cells,
                 std::vector<double> &J,
                 std::vector<double> &energy_density) const;
 
