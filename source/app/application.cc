@@ -11,6 +11,7 @@
 #include <estep/app/run_parameters.h>
 #include <estep/base/config.h>
 #include <estep/base/distributed_blocks.h>
+#include <estep/base/lanes.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_bodies.h>
@@ -807,6 +808,7 @@ namespace estep
     dealii::deal_II_exceptions::suppress_stacktrace_in_exceptions();
     try
       {
+        check_lane_kernel_target();
         if (argc >= 2 && std::string(argv[1]) == "ccd")
           {
             if (argc == 2)
@@ -858,7 +860,8 @@ namespace estep
         if (command.version)
           {
             std::cout << "estep " << ESTEP_VERSION << " (deal.II "
-                      << DEAL_II_PACKAGE_VERSION << ")\n";
+                      << DEAL_II_PACKAGE_VERSION << ", cell kernels "
+                      << lane_kernel_target() << ")\n";
             return exit_success;
           }
         if (command.print_parameters)

@@ -1,5 +1,6 @@
 #include <estep/base/config.h>
 #include <estep/base/distributed_blocks.h>
+#include <estep/base/lanes.h>
 #include <estep/io/run_summary.h>
 
 #include <sys/resource.h>
@@ -78,6 +79,7 @@ namespace estep
       .add("wall seconds", result.wall_seconds)
       .add("threads", thread_count())
       .add("MPI processes", rank_count())
+      .add("cell kernels", lane_kernel_target())
       .add("peak memory [MiB]", peak_memory_mib());
 
     JsonObject counters;

@@ -1,6 +1,8 @@
+#include <estep/base/config.h>
 #include <estep/materials/batch_log.h>
 
 #include <cmath>
+#include <cstring>
 
 #if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
 #  define ESTEP_HAVE_LIBMVEC 1
@@ -50,18 +52,24 @@ namespace estep
         y[i] = std::log(x[i]);
     }
 
+    // The widest logarithm is the processor's, but no wider than the
+    // instruction set the build fixed for the cell kernels (ESTEP_SIMD).
     bool
     have_avx512()
     {
-      static const bool avx512 = __builtin_cpu_supports("avx512f");
+      static const bool avx512 =
+        __builtin_cpu_supports("avx512f") &&
+        (std::strcmp(ESTEP_SIMD, "auto") == 0 ||
+         std::strcmp(ESTEP_SIMD, "x86-64-v4") == 0);
       return avx512;
     }
 
     bool
     have_avx2()
     {
-      static const bool avx2 =
-        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+      static const bool avx2 = __builtin_cpu_supports("avx2") &&
+                               __builtin_cpu_supports("fma") &&
+                               std::strcmp(ESTEP_SIMD, "x86-64") != 0;
       return avx2;
     }
 #endif

@@ -11,20 +11,29 @@
  * time in them (one AVX2 register, or two SSE2 registers).
  *
  * Lanes is the vector extension of GCC and Clang, so one source compiles for
- * every x86-64 level. A function marked ESTEP_LANE_KERNEL is compiled three
- * times, for x86-64-v4 (AVX-512: the same four lanes, but 32 registers instead
- * of 16, so that the matrices a cell kernel keeps live spill far less),
- * x86-64-v3 (AVX2, FMA) and the baseline, and the dynamic loader picks the
- * version the CPU runs: the binaries stay portable and use what the processor
- * has. Results of the versions may differ in the last bits (fused
- * multiply-adds); the kernels' rounding bounds hold for all.
+ * every x86-64 level. By default (CMake's ESTEP_SIMD = auto) a function marked
+ * ESTEP_LANE_KERNEL is compiled three times, for x86-64-v4 (AVX-512: the same
+ * four lanes, but 32 registers instead of 16, so that the matrices a cell
+ * kernel keeps live spill far less), x86-64-v3 (AVX2, FMA) and the baseline,
+ * and the dynamic loader picks the version the CPU runs: the binaries stay
+ * portable and use what the processor has. ESTEP_SIMD = x86-64-v4, x86-64-v3
+ * or x86-64 compiles the one version of that level instead (to measure a path
+ * on a machine that has a wider one). Results of the versions may differ in
+ * the last bits (fused multiply-adds); the kernels' rounding bounds hold for
+ * all.
  */
+
+#include <estep/base/config.h>
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
   defined(__linux__)
-#  define ESTEP_LANE_KERNEL \
-    __attribute__((         \
-      target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#  ifdef ESTEP_SIMD_FIXED
+#    define ESTEP_LANE_KERNEL __attribute__((target("arch=" ESTEP_SIMD)))
+#  else
+#    define ESTEP_LANE_KERNEL \
+      __attribute__((         \
+        target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#  endif
 #else
 #  define ESTEP_LANE_KERNEL
 #endif
@@ -35,6 +44,22 @@
 
 namespace estep
 {
+  /**
+   * The instruction set the ESTEP_LANE_KERNEL functions run with on this
+   * machine ("x86-64-v4", "x86-64-v3", "x86-64", or "portable C++" where they
+   * are not multiversioned).
+   */
+  const char *
+  lane_kernel_target();
+
+  /**
+   * Throws an exception naming the instruction set if the kernels were built
+   * for one (ESTEP_SIMD) that this processor lacks: a clear error instead of
+   * an illegal instruction.
+   */
+  void
+  check_lane_kernel_target();
+
   /** Four doubles, one per cell of a batch. */
   typedef double Lanes __attribute__((vector_size(4 * sizeof(double))));
 
