@@ -360,9 +360,9 @@ namespace estep
     // the rounding of m.
     const LineTaylorForm about = LineTaylorForm::about_centre_of(a, b);
     const double         m = about.centre, r = about.radius;
-    // f and f' at the centre.
-    const LineValue fm = value_and_derivative(m);
-    LineEnclosure   enclosure;
+    // f and f' at the centre, computed with the form.
+    LineValue     fm;
+    LineEnclosure enclosure;
     if (const auto taylor = taylor_form(about, fm))
       enclosure = taylor->enclosure();
     else
@@ -377,21 +377,22 @@ namespace estep
 
   namespace
   {
-    /** Enclosures of J_e, J_e' and J_e'' over a parameter interval for a
-     * chunk of cells (lower and upper bounds; small enough to stay in the L1
-     * cache).
+    /** Enclosures of J_e, J_e' and J_e'' over a parameter interval about a
+     * centre m for a chunk of cells (lower and upper bounds), and J_e(m),
+     * J_e'(m) (the bits of evaluate_cubics() at m); small enough to stay in
+     * the L1 cache.
      */
     struct JacobianRanges
     {
       static constexpr unsigned int size = 256; // a multiple of n_lanes
       double J_lo[size], J_hi[size], dJ_lo[size], dJ_hi[size], d2J_lo[size],
-        d2J_hi[size];
+        d2J_hi[size], J[size], dJ[size];
     };
 
     /**
      * Enclosures of J, J' and J'' over [m - r, m + r] of the cubics c0[i] +
-     * c1[i] s + c2[i] s^2 + c3[i] s^3, i < count rounded up to a multiple of
-     * 4 (the arrays are padded), four cells at a time.
+     * c1[i] s + c2[i] s^2 + c3[i] s^3, and J, J' at m, i < count rounded up
+     * to a multiple of 4 (the arrays are padded), four cells at a time.
      */
     ESTEP_LANE_KERNEL void
     enclose_cubics(const double       m,
@@ -418,6 +419,8 @@ namespace estep
           const Lanes Jm = k0 + m * (k1 + m * (k2 + m * k3));
           const Lanes D1 = k1 + m * (2. * k2 + 3. * m * k3);
           const Lanes D2 = k2 + 3. * m * k3;
+          store_lanes(ranges.J + i, Jm);
+          store_lanes(ranges.dJ + i, D1);
           const Lanes a1 = abs(k1), a2 = abs(k2), a3 = abs(k3);
           const Lanes scale0 = abs(k0) + S * (a1 + S * (a2 + S * a3));
           const Lanes scale1 = a1 + S * (2. * a2 + 3. * S * a3);
@@ -443,43 +446,46 @@ namespace estep
 
   std::optional<LineTaylorForm>
   ElasticFreeFlight::taylor_form(const LineTaylorForm &about,
-                                 const LineValue      &fm) const
+                                 LineValue            &fm) const
   {
     // f(m + t) = f(m) + f'(m) t + f''(xi) t^2 / 2 and
     // f'(m + t) = f'(m) + f''(xi) t, |t| <= r, with f'' enclosed per cell from
     // f_e'' = w (phi''(J) J'^2 + phi'(J) J''). Unlike a sum of per-cell
     // ranges, this form keeps its relative accuracy when the terms of V
     // cancel (a rigid rotation leaves V = O(s^4) from terms of size O(s^2)).
-    if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative))
-      return std::nullopt;
     const double m = about.centre, r = about.radius;
-    // The curvature of the volumetric part, block by block and in each chunk
-    // by chunk (the interval sum rounds outward); unbounded if it is in some
-    // chunk.
-    struct CurvatureTerms
+    // One pass over the cells, block by block and in each chunk by chunk:
+    // the volumetric part of f and f' at m, and the enclosure of its
+    // curvature (the interval sum rounds outward), unbounded if it is in
+    // some chunk.
+    struct CentreTerms
     {
-      Interval curvature;
-      double   slope_magnitude;
-      bool     bounded;
-      CurvatureTerms &
-      operator+=(const CurvatureTerms &other)
+      LineValue centre;
+      Interval  curvature;
+      double    slope_magnitude;
+      bool      bounded;
+      CentreTerms &
+      operator+=(const CentreTerms &other)
       {
+        centre.value += other.centre.value;
+        centre.derivative += other.centre.derivative;
         curvature += other.curvature;
         slope_magnitude += other.slope_magnitude;
         bounded = bounded && other.bounded;
         return *this;
       }
     };
-    CurvatureTerms terms = sum_over_distributed_blocks<CurvatureTerms>(
+    CentreTerms terms = sum_over_distributed_blocks<CentreTerms>(
       n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange cells = block_range(b, n_cells);
         JacobianRanges   ranges;
-        CurvatureTerms   block_terms{{0., 0.}, 0., true};
+        CentreTerms      block_terms{{0., 0.}, {0., 0.}, 0., true};
         for (unsigned int begin = cells.begin; begin < cells.end;
              begin += JacobianRanges::size)
           {
             const unsigned int count =
               std::min(JacobianRanges::size, cells.end - begin);
+            const double *volume = body.cell_data().volume.data() + begin;
             enclose_cubics(m,
                            r,
                            c0 + begin,
@@ -488,29 +494,43 @@ namespace estep
                            c3 + begin,
                            count,
                            ranges);
+            const LineValue centre =
+              body.material().sum_volumetric_energy_and_slope(ranges.J,
+                                                              ranges.dJ,
+                                                              volume,
+                                                              count);
+            block_terms.centre.value += centre.value;
+            block_terms.centre.derivative += centre.derivative;
+            if (!block_terms.bounded)
+              continue;
             double         chunk_slope = 0.;
             const Interval chunk =
-              body.material().enclose_volumetric_curvature_sum(
-                ranges.J_lo,
-                ranges.J_hi,
-                ranges.dJ_lo,
-                ranges.dJ_hi,
-                ranges.d2J_lo,
-                ranges.d2J_hi,
-                body.cell_data().volume.data() + begin,
-                count,
-                chunk_slope);
+              body.material().enclose_volumetric_curvature_sum(ranges.J_lo,
+                                                               ranges.J_hi,
+                                                               ranges.dJ_lo,
+                                                               ranges.dJ_hi,
+                                                               ranges.d2J_lo,
+                                                               ranges.d2J_hi,
+                                                               volume,
+                                                               count,
+                                                               chunk_slope);
             if (!std::isfinite(chunk.lower) || !std::isfinite(chunk.upper))
-              {
-                block_terms.bounded = false;
-                break;
-              }
+              block_terms.bounded = false;
             block_terms.curvature += chunk;
             block_terms.slope_magnitude += chunk_slope;
           }
         return block_terms;
       });
-    if (!terms.bounded)
+    fm = terms.centre;
+    if (!std::isfinite(fm.value))
+      fm = {infinity, 0.};
+    else
+      {
+        fm.value += quadratic[0] + m * (quadratic[1] + m * quadratic[2]);
+        fm.derivative += quadratic[1] + 2. * m * quadratic[2];
+      }
+    if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative) ||
+        !terms.bounded)
       return std::nullopt;
     Interval &curvature       = terms.curvature;
     double   &slope_magnitude = terms.slope_magnitude;

@@ -57,10 +57,9 @@ namespace estep
     bool
     have_avx512()
     {
-      static const bool avx512 =
-        __builtin_cpu_supports("avx512f") &&
-        (std::strcmp(ESTEP_SIMD, "auto") == 0 ||
-         std::strcmp(ESTEP_SIMD, "x86-64-v4") == 0);
+      static const bool avx512 = __builtin_cpu_supports("avx512f") &&
+                                 (std::strcmp(ESTEP_SIMD, "auto") == 0 ||
+                                  std::strcmp(ESTEP_SIMD, "x86-64-v4") == 0);
       return avx512;
     }
 

@@ -26,9 +26,10 @@ namespace estep
    * f_vol(J_e(s)) costs one cubic per cell plus the material's batch kernel (a
    * vectorised log for neo-Hookean).
    *
-   * enclose(a, b): per cell, enclosures of J_e, J_e' and J_e'' over [a, b]
-   * from the exact expansion of the cubic about the centre m (widened by a
-   * rounding bound); then the second-order form f(m) + f'(m) t + f''([a, b])
+   * enclose(a, b): per cell, in one pass, J_e and J_e' at the centre m and
+   * enclosures of J_e, J_e' and J_e'' over [a, b] from the exact expansion of
+   * the cubic about m (widened by a rounding bound); then the second-order
+   * form f(m) + f'(m) t + f''([a, b])
    * t^2 / 2 (a LineTaylorForm with W = 0) with the material's rigorous
    * enclosure of the volumetric part of f''; the enclosure reports that
    * curvature and f, f' at m as its sample. Where f'' is unbounded (an element
@@ -83,12 +84,13 @@ namespace estep
     LineValue
     volumetric_part(const double s, const bool slope) const;
 
-    /** The second-order (Taylor) form about the centre of @p about (a form
-     * of 0 about m, with its radius r), from f and f' at m (@p fm) and the
-     * enclosure of f'' over [m - r, m + r]; empty if f'' is unbounded
-     * there. */
+    /** f and f' at the centre m of @p about (into @p fm) and, in the same
+     * pass over the cells, the second-order (Taylor) form about m (a form of
+     * 0 about m, with its radius r) from them and the enclosure of f'' over
+     * [m - r, m + r]; empty if f'' is unbounded there or f(m) is not
+     * finite. */
     std::optional<LineTaylorForm>
-    taylor_form(const LineTaylorForm &about, const LineValue &fm) const;
+    taylor_form(const LineTaylorForm &about, LineValue &fm) const;
 
     /** The sum of the per-cell ranges of f and f' over [a, b], which lies in
      * [m - half_width, m + half_width]. */
