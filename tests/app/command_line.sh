@@ -44,7 +44,7 @@ PRM
 # Help, version, parameters.
 expect 0 "Usage: estep" -- --help
 expect 0 "Usage: estep" -- -h
-expect 0 "^estep [0-9]+\.[0-9]+\.[0-9]+ \(deal.II 9\." -- --version
+expect 0 "^estep [0-9]+\.[0-9]+\.[0-9]+ \(deal.II 9\.[0-9.]+, cell kernels (x86-64(-v[34])?|portable C\+\+)\)" -- --version
 expect 0 "set Energy step" -- --print-parameters
 expect 0 "# Energy step h \(energy units of the system\)" -- --print-parameters
 # The Selection patterns and documentation come from the registries.
@@ -82,6 +82,8 @@ expect 0 "completed" -- run.prm -s "Output directory=nolog" -s "Postprocessors/L
 grep -q '"final time": 2' run/summary.json || fail "summary.json lacks the final time"
 grep -q '"wall seconds"' run/summary.json || fail "summary.json lacks the wall time"
 grep -q '"peak memory \[MiB\]"' run/summary.json || fail "summary.json lacks the peak memory"
+grep -Eq '"cell kernels": "(x86-64(-v[34])?|portable C\+\+)"' run/summary.json ||
+  fail "summary.json lacks the cell kernels' instruction set"
 [[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
 python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
 
