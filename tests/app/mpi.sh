@@ -2,8 +2,9 @@
 # MPI: a run gives the same trajectory to the last bit on 1 process and on 2 MPI processes (of 1
 # and of 2 threads): the ranks share the blocks of cells, and every rank adds the blocks' sums in
 # block order. With and without contact. A run on 2 processes ended by SIGTERM resumes on 1 to
-# the same end, and one on 1 resumes on 2. Field output writes a piece per process. A system
-# without elastic cells, or with fewer cells than processes, is refused.
+# the same end, and one on 1 resumes on 2. Field output writes a piece per process. An output
+# that fails mid-run ends every process. A system without elastic cells, or with fewer cells
+# than processes, is refused.
 # Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
 # MPIEXEC, the MPI launcher.
@@ -158,6 +159,24 @@ done
 # (deal.II writes the time of writing into solution.pvd.)
 cmp -s <(grep -v generated fields-whole/solution.pvd) <(grep -v generated fields-resumed/solution.pvd) ||
   fail "field output resumed on 2 processes: solution.pvd differs from the run without a stop"
+
+# An output of the first process that fails mid-run (its first checkpoint meets a directory where
+# the file goes, made once the run is under way): it says so, summary.json says failed, and every
+# process ends with exit code 4 (MPI_Abort) instead of the second stepping on alone.
+"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10" \
+  --set "Time integration/End time=40" --set "Output/Checkpoint interval=10" \
+  --set "Postprocessors/List=history, progress" --set "Output directory=broken" > broken.txt 2>&1 &
+pid=$!
+for _ in $(seq 300); do grep -q '"status": "running"' broken/summary.json 2> /dev/null && break; sleep 0.1; done
+mkdir broken/checkpoint.bin.part
+wait $pid
+code=$?
+((code == 4)) || fail "a failed output on 2 processes: exit code $code, not 4: $(tail -3 broken.txt)"
+grep -q "^estep: Writing the checkpoint <broken/checkpoint.bin.part> failed" broken.txt ||
+  fail "a failed output on 2 processes is not reported: $(head -3 broken.txt)"
+grep -q '"status": "failed"' broken/summary.json ||
+  fail "a failed output on 2 processes: summary.json does not say failed"
+((code == 4)) && echo "failed output: exit code 4, $(grep -c '^estep: Writing the checkpoint' broken.txt) report"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {
