@@ -102,6 +102,18 @@ namespace
               b = a + 1e-6 * horizon; // narrow
             const auto enclosure = flight->enclose(a, b);
             EXPECT_LE(enclosure.value.lower, enclosure.value.upper);
+            // Its sample (computed in the pass that encloses the curvature)
+            // is f and f' at the centre, within the flight's round-off.
+            ASSERT_GE(enclosure.sample_point, a);
+            ASSERT_LE(enclosure.sample_point, b);
+            const auto centre =
+              flight->value_and_derivative(enclosure.sample_point);
+            EXPECT_NEAR(enclosure.sample.value,
+                        centre.value,
+                        flight->value_tolerance());
+            EXPECT_NEAR(enclosure.sample.derivative,
+                        centre.derivative,
+                        1e-12 * (1. + std::abs(centre.derivative)));
             for (unsigned int m = 0; m <= 20; ++m)
               {
                 const double s  = a + (b - a) * m / 20.;
