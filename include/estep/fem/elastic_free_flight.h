@@ -29,10 +29,9 @@ namespace estep
    * enclose(a, b): per cell, in one pass, J_e and J_e' at the centre m and
    * enclosures of J_e, J_e' and J_e'' over [a, b] from the exact expansion of
    * the cubic about m (widened by a rounding bound); then the second-order
-   * form f(m) + f'(m) t + f''([a, b])
-   * t^2 / 2 (a LineTaylorForm with W = 0) with the material's rigorous
-   * enclosure of the volumetric part of f''; the enclosure reports that
-   * curvature and f, f' at m as its sample. Where f'' is unbounded (an element
+   * form f(m) + f'(m) t + f''([a, b]) t^2 / 2 (a LineTaylorForm with W = 0)
+   * with the material's rigorous enclosure of the volumetric part of f''; the
+   * enclosure reports that curvature and f, f' at m as its sample. Where f'' is unbounded (an element
    * may invert in [a, b]), the sum of the per-cell ranges of the material's
    * volumetric term and the exact range of Q instead.
    *
