@@ -31,9 +31,9 @@ namespace estep
    * the cubic about m (widened by a rounding bound); then the second-order
    * form f(m) + f'(m) t + f''([a, b]) t^2 / 2 (a LineTaylorForm with W = 0)
    * with the material's rigorous enclosure of the volumetric part of f''; the
-   * enclosure reports that curvature and f, f' at m as its sample. Where f'' is unbounded (an element
-   * may invert in [a, b]), the sum of the per-cell ranges of the material's
-   * volumetric term and the exact range of Q instead.
+   * enclosure reports that curvature and f, f' at m as its sample. Where f'' is
+   * unbounded (an element may invert in [a, b]), the sum of the per-cell ranges
+   * of the material's volumetric term and the exact range of Q instead.
    *
    * admissible_limit(): the smallest positive root over cells of J_e(s),
    * computed from below (see the implementation: monotone pieces between
