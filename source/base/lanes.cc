@@ -6,10 +6,9 @@
 
 namespace estep
 {
+#ifdef ESTEP_LANE_LEVELS
   namespace
   {
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-  defined(__linux__)
     /** The x86-64 level of this processor: 4, 3, 2 or 1. */
     int
     processor_level()
@@ -19,14 +18,23 @@ namespace estep
              __builtin_cpu_supports("x86-64-v2") ? 2 :
                                                    1;
     }
-#endif
   } // namespace
+#endif
+
+  int
+  widest_lane_level()
+  {
+    // The level in the name: "x86-64-v3" 3, "x86-64" 1.
+    const char *suffix = std::strstr(ESTEP_SIMD, "-v");
+    return std::strcmp(ESTEP_SIMD, "auto") == 0 ? 4 :
+           suffix != nullptr                    ? suffix[2] - '0' :
+                                                  1;
+  }
 
   const char *
   lane_kernel_target()
   {
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-  defined(__linux__)
+#ifdef ESTEP_LANE_LEVELS
 #  ifdef ESTEP_SIMD_FIXED
     return ESTEP_SIMD;
 #  else
@@ -43,11 +51,8 @@ namespace estep
   void
   check_lane_kernel_target()
   {
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-  defined(__linux__) && defined(ESTEP_SIMD_FIXED)
-    // The level of the name: "x86-64-v3" 3, "x86-64" 1.
-    const char *suffix = std::strstr(ESTEP_SIMD, "-v");
-    if (processor_level() < (suffix != nullptr ? suffix[2] - '0' : 1))
+#if defined(ESTEP_LANE_LEVELS) && defined(ESTEP_SIMD_FIXED)
+    if (processor_level() < widest_lane_level())
       throw std::runtime_error(
         std::string("estep was built for the instruction set ") + ESTEP_SIMD +
         " (CMake's ESTEP_SIMD), which this processor does not have; "

@@ -335,21 +335,24 @@ namespace estep
   double
   ElasticFreeFlight::value(const double s) const
   {
-    const double volumetric = volumetric_part(s, false).value;
-    if (!std::isfinite(volumetric))
-      return infinity;
-    return volumetric + (quadratic[0] + s * (quadratic[1] + s * quadratic[2]));
+    return with_quadratic_part(s, volumetric_part(s, false)).value;
   }
 
   LineValue
   ElasticFreeFlight::value_and_derivative(const double s) const
   {
-    LineValue r = volumetric_part(s, true);
-    if (!std::isfinite(r.value))
+    return with_quadratic_part(s, volumetric_part(s, true));
+  }
+
+  LineValue
+  ElasticFreeFlight::with_quadratic_part(const double s,
+                                         LineValue    volumetric) const
+  {
+    if (!std::isfinite(volumetric.value))
       return {infinity, 0.};
-    r.value += quadratic[0] + s * (quadratic[1] + s * quadratic[2]);
-    r.derivative += quadratic[1] + 2. * s * quadratic[2];
-    return r;
+    volumetric.value += quadratic[0] + s * (quadratic[1] + s * quadratic[2]);
+    volumetric.derivative += quadratic[1] + 2. * s * quadratic[2];
+    return volumetric;
   }
 
   LineEnclosure
@@ -521,14 +524,7 @@ namespace estep
           }
         return block_terms;
       });
-    fm = terms.centre;
-    if (!std::isfinite(fm.value))
-      fm = {infinity, 0.};
-    else
-      {
-        fm.value += quadratic[0] + m * (quadratic[1] + m * quadratic[2]);
-        fm.derivative += quadratic[1] + 2. * m * quadratic[2];
-      }
+    fm = with_quadratic_part(m, terms.centre);
     if (!std::isfinite(fm.value) || !std::isfinite(fm.derivative) ||
         !terms.bounded)
       return std::nullopt;

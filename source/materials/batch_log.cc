@@ -1,8 +1,7 @@
-#include <estep/base/config.h>
+#include <estep/base/lanes.h>
 #include <estep/materials/batch_log.h>
 
 #include <cmath>
-#include <cstring>
 
 #if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
 #  define ESTEP_HAVE_LIBMVEC 1
@@ -57,9 +56,8 @@ namespace estep
     bool
     have_avx512()
     {
-      static const bool avx512 = __builtin_cpu_supports("avx512f") &&
-                                 (std::strcmp(ESTEP_SIMD, "auto") == 0 ||
-                                  std::strcmp(ESTEP_SIMD, "x86-64-v4") == 0);
+      static const bool avx512 =
+        __builtin_cpu_supports("avx512f") && widest_lane_level() >= 4;
       return avx512;
     }
 
@@ -68,7 +66,7 @@ namespace estep
     {
       static const bool avx2 = __builtin_cpu_supports("avx2") &&
                                __builtin_cpu_supports("fma") &&
-                               std::strcmp(ESTEP_SIMD, "x86-64") != 0;
+                               widest_lane_level() >= 3;
       return avx2;
     }
 #endif

@@ -27,6 +27,7 @@
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
   defined(__linux__)
+#  define ESTEP_LANE_LEVELS 1 // the kernels are built for x86-64 levels
 #  ifdef ESTEP_SIMD_FIXED
 #    define ESTEP_LANE_KERNEL __attribute__((target("arch=" ESTEP_SIMD)))
 #  else
@@ -51,6 +52,13 @@ namespace estep
    */
   const char *
   lane_kernel_target();
+
+  /**
+   * The widest x86-64 level (4, 3 or 1) the build lets the kernels and the
+   * vector logarithm use: that of ESTEP_SIMD, or 4 for auto.
+   */
+  int
+  widest_lane_level();
 
   /**
    * Throws an exception naming the instruction set if the kernels were built

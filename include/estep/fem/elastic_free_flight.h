@@ -83,6 +83,11 @@ namespace estep
     LineValue
     volumetric_part(const double s, const bool slope) const;
 
+    /** f and f' at @p s from their @p volumetric part: the quadratic part
+     * added, or (+infinity, 0) where the volumetric part is not finite. */
+    LineValue
+    with_quadratic_part(const double s, LineValue volumetric) const;
+
     /** f and f' at the centre m of @p about (into @p fm) and, in the same
      * pass over the cells, the second-order (Taylor) form about m (a form of
      * 0 about m, with its radius r) from them and the enclosure of f'' over
