@@ -10,6 +10,12 @@ prints a table (caught / survived / does not build / stale) and exits non-zero
 unless every mutation is caught.
 
     tests/mutations/run_mutations.py [--scratch DIR] [--jobs N] [--only ID ...]
+    tests/mutations/run_mutations.py --check-catalogue BUILD_DIR
+
+--check-catalogue builds and runs nothing: it checks, in seconds, that every
+mutation's text occurs exactly once in the tree and that every test it names
+exists in BUILD_DIR, so that a change which moves a guarded line fails at once
+instead of leaving its mutation stale (the default tier runs it).
 """
 
 import argparse
@@ -98,6 +104,35 @@ def test_targets(build):
     return targets
 
 
+def stale(mutation, source):
+    """Why @p mutation cannot be applied to the tree at @p source, or None."""
+    path = source / mutation["file"]
+    if not path.is_file():
+        return f"{mutation['file']} does not exist"
+    count = path.read_text().count(mutation["find"])
+    if count != 1:
+        return f"its text occurs {count} times in {mutation['file']}, not once"
+    return None
+
+
+def check_catalogue(mutations, build):
+    """0 if every mutation applies to this tree and names existing tests."""
+    targets = test_targets(build)
+    problems = []
+    for m in mutations:
+        reason = stale(m, SOURCE)
+        if reason:
+            problems.append(f"mutation {m['id']} (line {m['line']}): {reason}")
+        unknown = [t for t in m["tests"] if t not in targets]
+        if unknown:
+            problems.append(f"mutation {m['id']} (line {m['line']}): no test named "
+                            f"{', '.join(unknown)}")
+    for problem in problems:
+        print(f"{CATALOGUE}: {problem}")
+    print(f"{len(mutations)} mutations checked, {len(problems)} problems")
+    return 1 if problems else 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--scratch", default=os.path.join(
@@ -108,9 +143,13 @@ def main():
     parser.add_argument("--time-limit", type=float, default=240.,
                         help="seconds the tests of one mutation may run; a mutation that makes "
                         "them run longer counts as caught (timed out)")
+    parser.add_argument("--check-catalogue", metavar="BUILD_DIR",
+                        help="only check that every mutation applies and names existing tests")
     args = parser.parse_args()
 
     mutations = read_catalogue(CATALOGUE)
+    if args.check_catalogue:
+        return check_catalogue(mutations, Path(args.check_catalogue))
     if args.only:
         mutations = [m for m in mutations if m["id"] in args.only]
     scratch = Path(args.scratch)
@@ -155,7 +194,7 @@ def main():
         path = source / m["file"]
         original = path.read_text() if path.is_file() else ""
         t0 = time.time()
-        if original.count(m["find"]) != 1:
+        if stale(m, source):
             verdict = "stale"  # the text is gone or ambiguous: the catalogue needs updating
         else:
             path.write_text(original.replace(m["find"], m["replace"]))
