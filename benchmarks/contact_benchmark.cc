@@ -1,6 +1,7 @@
 // Performance of the contact area: triangle-triangle tests per second, broad
 // phase of two touching spheres of 1e5 boundary triangles each (self query over
-// both, and body versus body), CCD time per query (all sample queries and the
+// both, without and with a group per sphere, and body versus body), CCD time
+// per query (all sample queries and the
 // non-degenerate ones).
 //
 // Run: benchmark_contact_benchmark [--benchmark_filter=...]. The CCD benchmarks
@@ -111,6 +112,27 @@ namespace
     state.counters["candidate_pairs"] = pairs.size();
   }
   BENCHMARK(BM_BroadPhaseSelfBuildAndQuery)->Unit(benchmark::kMillisecond);
+
+  // The same, with a group per sphere (no self-contact): the pairs within a
+  // sphere are pruned with their subtrees instead of found and discarded.
+  void
+  BM_BroadPhaseSelfWithGroupsBuildAndQuery(benchmark::State &state)
+  {
+    const TwoSpheres         &s = two_spheres();
+    std::vector<unsigned int> groups(s.triangles.size(), 0u);
+    std::fill(groups.begin() + s.first.size(), groups.end(), 1u);
+    BoundingVolumeHierarchy                            bvh(s.triangles, groups);
+    std::vector<std::pair<unsigned int, unsigned int>> pairs;
+    for (auto _ : state)
+      {
+        bvh.build(s.q.data(), s.q.size());
+        bvh.find_pairs(pairs);
+      }
+    state.counters["triangles"]       = s.triangles.size();
+    state.counters["candidate_pairs"] = pairs.size();
+  }
+  BENCHMARK(BM_BroadPhaseSelfWithGroupsBuildAndQuery)
+    ->Unit(benchmark::kMillisecond);
 
   void
   BM_BroadPhaseSelfRefitAndQuery(benchmark::State &state)

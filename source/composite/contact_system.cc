@@ -652,15 +652,12 @@ namespace estep
   std::vector<std::pair<unsigned int, unsigned int>>
   ContactSystem::intersecting_pairs(const Vector &q) const
   {
-    contact::BoundingVolumeHierarchy bvh(triangles);
+    contact::BoundingVolumeHierarchy bvh(triangles, exclusion_groups);
     bvh.build(q.data(), q.size());
     std::vector<std::pair<unsigned int, unsigned int>> candidates, pairs;
     bvh.find_pairs(candidates);
     for (const auto &[i, j] : candidates)
       {
-        if (!exclusion_groups.empty() &&
-            exclusion_groups[i] == exclusion_groups[j])
-          continue;
         if (contact::triangles_intersect(
               contact::triangle_at(q.data(), triangles[i]),
               contact::triangle_at(q.data(), triangles[j])))

@@ -71,13 +71,33 @@ namespace estep
 
 
     BoundingVolumeHierarchy::BoundingVolumeHierarchy(
-      std::vector<TriangleIndices> triangles_in)
+      std::vector<TriangleIndices> triangles_in,
+      std::vector<unsigned int>    exclusion_groups)
       : triangles(std::move(triangles_in))
       , max_index(0)
     {
       for (const auto &t : triangles)
         for (const unsigned int i : t)
           max_index = std::max(max_index, i);
+      set_exclusion_groups(std::move(exclusion_groups));
+    }
+
+
+
+    void
+    BoundingVolumeHierarchy::set_exclusion_groups(
+      std::vector<unsigned int> exclusion_groups)
+    {
+      if (!exclusion_groups.empty() &&
+          exclusion_groups.size() != triangles.size())
+        throw std::invalid_argument("BoundingVolumeHierarchy: " +
+                                    std::to_string(exclusion_groups.size()) +
+                                    " exclusion groups for " +
+                                    std::to_string(triangles.size()) +
+                                    " triangles; one per triangle expected");
+      groups = std::move(exclusion_groups);
+      nodes.clear();
+      order.clear();
     }
 
 
@@ -245,7 +265,8 @@ namespace estep
       // in the middle. Both halves are non-empty, so the tree has at most
       // 2 n - 1 nodes.
       nodes.reserve(2 * n);
-      nodes.push_back(Node{BoundingBox(), 0, static_cast<unsigned int>(n), 0});
+      nodes.push_back(
+        Node{BoundingBox(), 0, static_cast<unsigned int>(n), 0, mixed_groups});
       std::vector<unsigned int> stack = {0};
       while (!stack.empty())
         {
@@ -270,14 +291,34 @@ namespace estep
             }
           const unsigned int child = nodes.size();
           nodes[node].first_child  = child;
-          nodes.push_back(Node{BoundingBox(), begin, mid, 0});
-          nodes.push_back(Node{BoundingBox(), mid, end, 0});
+          nodes.push_back(Node{BoundingBox(), begin, mid, 0, mixed_groups});
+          nodes.push_back(Node{BoundingBox(), mid, end, 0, mixed_groups});
           stack.push_back(child);
           stack.push_back(child + 1);
         }
       ordered_triangles.resize(n);
+      ordered_groups.resize(n);
       for (std::size_t i = 0; i < n; ++i)
-        ordered_triangles[i] = triangles[order[i]];
+        {
+          ordered_triangles[i] = triangles[order[i]];
+          ordered_groups[i]    = groups.empty() ? order[i] : groups[order[i]];
+        }
+      // Each node's group, children before their parent (they come after
+      // it).
+      for (std::size_t j = nodes.size(); j-- > 0;)
+        {
+          Node &node = nodes[j];
+          if (node.first_child == 0)
+            {
+              node.group = ordered_groups[node.begin];
+              for (unsigned int i = node.begin + 1; i < node.end; ++i)
+                if (ordered_groups[i] != node.group)
+                  node.group = mixed_groups;
+            }
+          else if (nodes[node.first_child].group ==
+                   nodes[node.first_child + 1].group)
+            node.group = nodes[node.first_child].group;
+        }
       refit_tree();
     }
 
@@ -372,13 +413,17 @@ namespace estep
 
       /**
        * A simultaneous descent of two trees from the node pair @p root:
-       * @p visit(node pair, next, pairs) handles one node pair, adding the
-       * triangle pairs it finds to pairs and the node pairs to descend into
-       * to next. The node pairs are first visited breadth first until
+       * @p visit(node pair, next, pairs, prune) handles one node pair, adding
+       * the triangle pairs it finds to pairs and the node pairs to descend
+       * into to next. The node pairs are first visited breadth first until
        * descent_tasks of them wait (or none); each of those then starts a
        * depth-first descent, on the threads, into its own list; the lists are
        * appended in turn. The order of the pairs so depends on the trees
-       * alone, not on the number of threads.
+       * alone, not on the number of threads. Node pairs that can hold no
+       * wanted triangle pair may be pruned (prune = true) in the depth-first
+       * descents only: pruning there removes whole subtrees from a descent
+       * and leaves the order of the rest, while in the breadth-first part it
+       * would change which node pairs start the descents.
        */
       template <typename Visit>
       void
@@ -391,7 +436,7 @@ namespace estep
         while (first < waiting.size() && waiting.size() - first < descent_tasks)
           {
             next.clear();
-            visit(waiting[first++], next, pairs);
+            visit(waiting[first++], next, pairs, false);
             waiting.insert(waiting.end(), next.begin(), next.end());
           }
         const unsigned int n_tasks = waiting.size() - first;
@@ -404,7 +449,7 @@ namespace estep
             {
               const NodePair pair = stack.back();
               stack.pop_back();
-              visit(pair, stack, found[task]);
+              visit(pair, stack, found[task], true);
             }
         });
         for (const auto &task_pairs : found)
@@ -424,20 +469,25 @@ namespace estep
       // Simultaneous descent of the tree against itself (a, b: nodes; i, j:
       // positions in tree order): a node against itself gives its children
       // against themselves and against each other; other pairs of nodes are
-      // only descended into if their boxes overlap.
+      // only descended into if their boxes overlap, and not at all if all
+      // their triangles lie in one exclusion group.
       const auto visit =
         [&](const NodePair                                     &ab,
             std::vector<NodePair>                              &next,
-            std::vector<std::pair<unsigned int, unsigned int>> &found) {
+            std::vector<std::pair<unsigned int, unsigned int>> &found,
+            const bool                                          prune) {
           const auto test = [&](const unsigned int i, const unsigned int j) {
             if (overlap(ordered_boxes[i], ordered_boxes[j]) &
-                !share_index(ordered_triangles[i], ordered_triangles[j]))
+                !share_index(ordered_triangles[i], ordered_triangles[j]) &
+                (ordered_groups[i] != ordered_groups[j]))
               found.emplace_back(std::min(order[i], order[j]),
                                  std::max(order[i], order[j]));
           };
           const auto [a, b] = ab;
           const Node &A = nodes[a], &B = nodes[b];
-          const bool  a_leaf = A.first_child == 0, b_leaf = B.first_child == 0;
+          if (prune && A.group != mixed_groups && A.group == B.group)
+            return;
+          const bool a_leaf = A.first_child == 0, b_leaf = B.first_child == 0;
           if (a == b)
             {
               if (a_leaf)
@@ -496,7 +546,8 @@ namespace estep
       const auto visit =
         [&](const NodePair                                     &ab,
             std::vector<NodePair>                              &next,
-            std::vector<std::pair<unsigned int, unsigned int>> &found) {
+            std::vector<std::pair<unsigned int, unsigned int>> &found,
+            bool /*prune: nothing to prune between two trees*/) {
           const auto [a, b] = ab;
           const Node &A = nodes[a], &B = other.nodes[b];
           const bool  a_leaf = A.first_child == 0, b_leaf = B.first_child == 0;

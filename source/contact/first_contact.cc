@@ -195,7 +195,7 @@ namespace estep
         }
       // Boxes enlarged by the tolerance: pairs that come within it are
       // examined (the CCD may report them).
-      BoundingVolumeHierarchy bvh(triangles);
+      BoundingVolumeHierarchy bvh(triangles, groups);
       bvh.build_swept(q,
                       v,
                       n,
@@ -207,8 +207,6 @@ namespace estep
       std::vector<Query> queries;
       for (const auto &[i, j] : pairs)
         {
-          if (!groups.empty() && groups[i] == groups[j])
-            continue;
           const TriangleIndices &Ti = triangles[i], &Tj = triangles[j];
           const Point3 ni = unit_normal(q, Ti), nj = unit_normal(q, Tj);
           for (unsigned int k = 0; k < 3; ++k)

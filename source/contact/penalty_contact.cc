@@ -109,7 +109,7 @@ namespace estep
         throw std::invalid_argument(
           "PenaltyContact::set_exclusion_groups: one group per triangle "
           "expected");
-      exclusion_groups = std::move(groups);
+      bvh.set_exclusion_groups(std::move(groups));
     }
 
 
@@ -140,8 +140,6 @@ namespace estep
       double      total = 0.;
       for (const auto &[i, j] : pairs)
         {
-          if (excluded_by_group(i, j))
-            continue;
           const Triangle3        T0 = triangle_at(q, tris[i]);
           const Triangle3        T1 = triangle_at(q, tris[j]);
           std::array<double, 18> grad;
@@ -208,17 +206,10 @@ namespace estep
       f.q.assign(q, q + n);
       f.v.assign(v, v + n);
       f.s_max = s_max;
-      BoundingVolumeHierarchy swept(bvh.get_triangles());
+      BoundingVolumeHierarchy swept(bvh.get_triangles(),
+                                    bvh.get_exclusion_groups());
       swept.build_swept(q, v, n, s_max);
       swept.find_pairs(f.pairs);
-      if (!exclusion_groups.empty())
-        f.pairs.erase(std::remove_if(f.pairs.begin(),
-                                     f.pairs.end(),
-                                     [this](const auto &p) {
-                                       return excluded_by_group(p.first,
-                                                                p.second);
-                                     }),
-                      f.pairs.end());
       return f;
     }
 

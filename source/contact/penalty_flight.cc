@@ -609,7 +609,7 @@ namespace estep
       : contact(contact)
       , q(q, q + n)
       , v(v, v + n)
-      , bvh(contact.get_triangles())
+      , bvh(contact.get_triangles(), contact.get_exclusion_groups())
     {
       for (std::size_t i = 0; i < n; ++i)
         {
@@ -643,13 +643,6 @@ namespace estep
                           end - a,
                           margin + 8. * unit * std::abs(end) * max_v);
           bvh.find_pairs(broad_pairs);
-          broad_pairs.erase(std::remove_if(broad_pairs.begin(),
-                                           broad_pairs.end(),
-                                           [this](const auto &p) {
-                                             return contact.excluded_by_group(
-                                               p.first, p.second);
-                                           }),
-                            broad_pairs.end());
           cached  = true;
           cache_a = a;
           cache_b = end;

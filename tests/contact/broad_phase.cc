@@ -6,6 +6,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/contact/boundary_triangles.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/contact/triangle_intersection.h>
@@ -294,6 +295,81 @@ TEST(BroadPhase, TouchingSpheres)
           joining.emplace_back(i, j - first.size());
       EXPECT_EQ(sorted(joining), sorted(between));
     }
+}
+
+TEST(BroadPhase, ExclusionGroupsLeaveOutExactlyThePairsWithinAGroup)
+{
+  // The self query with exclusion groups is the query without them, minus the
+  // pairs within a group, in the same order (on 1 and 2 threads): so the
+  // pruning of single-group subtrees loses no pair between groups. Groups by
+  // region, with a slab in the middle where three groups mix (mixed leaves
+  // and nodes), on 6,000 small triangles: enough for the descent's
+  // depth-first part, where the pruning happens, to do most of the work.
+  std::mt19937_64                        rng(7);
+  std::uniform_real_distribution<double> u(0., 1.), s(-0.03, 0.03);
+  std::vector<double>                    q;
+  std::vector<TriangleIndices>           tris;
+  std::vector<unsigned int>              groups;
+  for (unsigned int i = 0; i < 6000; ++i)
+    {
+      const double c[3] = {u(rng), u(rng), u(rng)};
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int k = 0; k < 3; ++k)
+          q.push_back(c[k] + s(rng));
+      tris.push_back({{3 * i, 3 * i + 1, 3 * i + 2}});
+      groups.push_back(c[0] < 0.35 ? 0u :
+                       c[0] > 0.65 ? 1u :
+                                     static_cast<unsigned int>(rng() % 3));
+    }
+  BoundingVolumeHierarchy plain(tris), grouped(tris, groups);
+  plain.build(q.data(), q.size());
+  grouped.build(q.data(), q.size());
+  Pairs all;
+  plain.find_pairs(all);
+  Pairs between_groups;
+  for (const auto &[i, j] : all)
+    if (groups[i] != groups[j])
+      between_groups.emplace_back(i, j);
+  ASSERT_GT(between_groups.size(), 500u);
+  ASSERT_GT(all.size(), 2 * between_groups.size());
+  for (const unsigned int threads : {1u, 2u})
+    {
+      estep::set_thread_count(threads);
+      Pairs found;
+      grouped.find_pairs(found);
+      EXPECT_EQ(found, between_groups) << threads << " threads";
+    }
+  estep::set_thread_count(1);
+
+  // Two touching spheres, a group each: the self query gives exactly the
+  // pairs of the query between the two spheres' hierarchies.
+  std::vector<double>          p;
+  std::vector<TriangleIndices> first, second;
+  estep_test::add_sphere(p, first, 0., 0., 0., 1., 40, 40);
+  estep_test::add_sphere(p, second, 1.98, 0.01, 0.02, 1., 40, 40);
+  std::vector<TriangleIndices> both = first;
+  both.insert(both.end(), second.begin(), second.end());
+  std::vector<unsigned int> body(both.size(), 0u);
+  std::fill(body.begin() + first.size(), body.end(), 1u);
+  BoundingVolumeHierarchy spheres(both, body), a(first), b(second);
+  spheres.build(p.data(), p.size());
+  a.build(p.data(), p.size());
+  b.build(p.data(), p.size());
+  Pairs self, joining;
+  spheres.find_pairs(self);
+  a.find_pairs(b, joining);
+  ASSERT_GT(joining.size(), 5u);
+  for (auto &[i, j] : joining)
+    j += first.size();
+  EXPECT_EQ(sorted(self), sorted(joining));
+
+  // Groups set after construction take effect at the next build; a wrong
+  // number of them is refused.
+  spheres.set_exclusion_groups({});
+  spheres.build(p.data(), p.size());
+  spheres.find_pairs(self);
+  EXPECT_EQ(sorted(self), sorted(brute_force(spheres)));
+  EXPECT_THROW(spheres.set_exclusion_groups({0u, 1u}), std::invalid_argument);
 }
 
 TEST(BroadPhase, DegenerateInputs)

@@ -46,8 +46,16 @@ namespace estep
      * Broad phase over the triangles of a surface: a bounding volume hierarchy
      * (binary tree of axis-aligned boxes, at most eight triangles per leaf)
      * that finds all pairs of triangles whose boxes overlap, except pairs that
-     * share a vertex (neighbours on the surface), within one surface
-     * (find_pairs()) or between two surfaces (find_pairs(other, ...)).
+     * share a vertex (neighbours on the surface) and pairs within one
+     * exclusion group (e.g. two triangles of one body, where there is no
+     * self-contact), within one surface (find_pairs()) or between two
+     * surfaces (find_pairs(other, ...)).
+     *
+     * Exclusion groups prune the self query: a subtree whose triangles all
+     * lie in one group is not descended against itself, nor two such
+     * subtrees of the same group against each other. Without that, the query
+     * over several bodies would visit every pair of neighbouring triangles
+     * within each body, only for them to be discarded.
      *
      * Construction: the triangles are sorted by the Morton code (bit
      * interleaving of the quantised coordinates, 21 bits per axis) of their
@@ -78,7 +86,19 @@ namespace estep
        * n_points of the coordinate vectors passed later (checked there,
        * std::invalid_argument otherwise).
        */
-      explicit BoundingVolumeHierarchy(std::vector<TriangleIndices> triangles);
+      explicit BoundingVolumeHierarchy(
+        std::vector<TriangleIndices> triangles,
+        std::vector<unsigned int>    exclusion_groups = {});
+
+      /**
+       * One group per triangle (or none: empty): the self query find_pairs()
+       * then skips the pairs of two triangles of one group (the query between
+       * two hierarchies does not look at groups). The tree must be built
+       * (again) after this call. Throws std::invalid_argument if the size is
+       * neither 0 nor the number of triangles.
+       */
+      void
+      set_exclusion_groups(std::vector<unsigned int> groups);
 
       /** Build the tree for the configuration q (size n) with boxes enlarged by
        * margin. */
@@ -112,10 +132,12 @@ namespace estep
                   const double      margin = 0.);
 
       /**
-       * All pairs (i, j), i < j, of triangle numbers whose boxes overlap and
-       * which share no vertex index. Replaces the content of @p pairs; their
-       * order depends on the tree alone, not on the number of threads (the
-       * descent splits into tasks at a fixed frontier).
+       * All pairs (i, j), i < j, of triangle numbers whose boxes overlap,
+       * which share no vertex index and lie in different exclusion groups.
+       * Replaces the content of @p pairs; their order depends on the tree
+       * alone, not on the number of threads (the descent splits into tasks at
+       * a fixed frontier), nor on the groups: it is the order of the query
+       * without groups, with the pairs within a group left out.
        */
       void
       find_pairs(
@@ -162,6 +184,13 @@ namespace estep
         return triangles;
       }
 
+      /** The exclusion groups as last set (empty: none). */
+      const std::vector<unsigned int> &
+      get_exclusion_groups() const
+      {
+        return groups;
+      }
+
       /** Box of triangle i as last computed. */
       const BoundingBox &
       triangle_box(const unsigned int i) const
@@ -176,7 +205,12 @@ namespace estep
         // Leaf: triangles order[begin, end), first_child = 0. Inner: children
         // first_child and first_child + 1 (never 0, the root).
         unsigned int begin, end, first_child;
+        // The exclusion group of all its triangles, or mixed_groups.
+        unsigned int group;
       };
+
+      /** Node::group of a node whose triangles lie in several groups. */
+      static constexpr unsigned int mixed_groups = ~0u;
 
       void
       compute_boxes(const double     *q,
@@ -201,6 +235,9 @@ namespace estep
       std::vector<Node>            nodes;
       std::vector<BoundingBox>     ordered_boxes;
       std::vector<TriangleIndices> ordered_triangles;
+      /** The exclusion group of each triangle (empty: none), and in tree
+       * order (each triangle its own group when there are none). */
+      std::vector<unsigned int> groups, ordered_groups;
       // Scratch of the construction (kept to avoid reallocation on rebuild):
       // Morton codes in tree order and the radix sort's buffers.
       std::vector<std::uint64_t> codes, code_buffer;

@@ -96,14 +96,12 @@ namespace estep
       void
       set_exclusion_groups(std::vector<unsigned int> groups);
 
-      /** Whether the pair (i, j) of triangle numbers is excluded by the
-       * exclusion groups (pairs sharing a vertex are excluded by the broad
-       * phase). */
-      bool
-      excluded_by_group(const unsigned int i, const unsigned int j) const
+      /** The exclusion groups as last set (empty: none). The broad phase
+       * leaves out the pairs they exclude, as those that share a vertex. */
+      const std::vector<unsigned int> &
+      get_exclusion_groups() const
       {
-        return !exclusion_groups.empty() &&
-               exclusion_groups[i] == exclusion_groups[j];
+        return bvh.get_exclusion_groups();
       }
 
       /** Rebuild the hierarchy every this many refits (default 64). */
@@ -195,7 +193,6 @@ namespace estep
                unsigned int     *count) const;
 
       double                          eps;
-      std::vector<unsigned int>       exclusion_groups;
       unsigned int                    rebuild_every = 64;
       mutable unsigned int            n_refits      = 0;
       mutable BoundingVolumeHierarchy bvh;
