@@ -97,30 +97,19 @@ namespace
 
   // Self case: one hierarchy over both spheres, all non-adjacent pairs (most
   // of them between neighbours on the same sphere).
+  // Argument 1: the same with a group per sphere (no self-contact), so that
+  // the pairs within a sphere are pruned with their subtrees instead of found
+  // and discarded.
   void
   BM_BroadPhaseSelfBuildAndQuery(benchmark::State &state)
   {
-    const TwoSpheres                                  &s = two_spheres();
-    BoundingVolumeHierarchy                            bvh(s.triangles);
-    std::vector<std::pair<unsigned int, unsigned int>> pairs;
-    for (auto _ : state)
-      {
-        bvh.build(s.q.data(), s.q.size());
-        bvh.find_pairs(pairs);
-      }
-    state.counters["triangles"]       = s.triangles.size();
-    state.counters["candidate_pairs"] = pairs.size();
-  }
-  BENCHMARK(BM_BroadPhaseSelfBuildAndQuery)->Unit(benchmark::kMillisecond);
-
-  // The same, with a group per sphere (no self-contact): the pairs within a
-  // sphere are pruned with their subtrees instead of found and discarded.
-  void
-  BM_BroadPhaseSelfWithGroupsBuildAndQuery(benchmark::State &state)
-  {
     const TwoSpheres         &s = two_spheres();
-    std::vector<unsigned int> groups(s.triangles.size(), 0u);
-    std::fill(groups.begin() + s.first.size(), groups.end(), 1u);
+    std::vector<unsigned int> groups;
+    if (state.range(0) == 1)
+      {
+        groups.assign(s.triangles.size(), 0u);
+        std::fill(groups.begin() + s.first.size(), groups.end(), 1u);
+      }
     BoundingVolumeHierarchy                            bvh(s.triangles, groups);
     std::vector<std::pair<unsigned int, unsigned int>> pairs;
     for (auto _ : state)
@@ -131,7 +120,9 @@ namespace
     state.counters["triangles"]       = s.triangles.size();
     state.counters["candidate_pairs"] = pairs.size();
   }
-  BENCHMARK(BM_BroadPhaseSelfWithGroupsBuildAndQuery)
+  BENCHMARK(BM_BroadPhaseSelfBuildAndQuery)
+    ->Arg(0)
+    ->Arg(1)
     ->Unit(benchmark::kMillisecond);
 
   void

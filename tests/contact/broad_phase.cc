@@ -61,6 +61,20 @@ namespace
     return p;
   }
 
+  /** Two touching unit spheres of 2 n (n - 1) triangles each, indexing q. */
+  struct TouchingSpheres
+  {
+    std::vector<double>          q;
+    std::vector<TriangleIndices> first, second, both;
+    explicit TouchingSpheres(const unsigned int n)
+    {
+      estep_test::add_sphere(q, first, 0., 0., 0., 1., n, n);
+      estep_test::add_sphere(q, second, 1.98, 0.01, 0.02, 1., n, n);
+      both = first;
+      both.insert(both.end(), second.begin(), second.end());
+    }
+  };
+
   /** A soup of small random triangles sharing some vertices. */
   void
   soup(std::mt19937_64              &rng,
@@ -270,13 +284,10 @@ TEST(BroadPhase, TouchingSpheres)
   // Structured surfaces (the benchmark's configuration, coarser): the self
   // query and the body-versus-body query equal brute force, and the body
   // pairs are exactly the self pairs that join the two spheres.
-  std::vector<double>          q;
-  std::vector<TriangleIndices> first, second;
-  estep_test::add_sphere(q, first, 0., 0., 0., 1., 24, 24);
-  estep_test::add_sphere(q, second, 1.98, 0.01, 0.02, 1., 24, 24);
-  std::vector<TriangleIndices> both = first;
-  both.insert(both.end(), second.begin(), second.end());
-  BoundingVolumeHierarchy all(both), a(first), b(second);
+  const TouchingSpheres   spheres(24);
+  const auto             &q     = spheres.q;
+  const auto             &first = spheres.first;
+  BoundingVolumeHierarchy all(spheres.both), a(first), b(spheres.second);
   for (const double margin : {0., 0.01})
     {
       all.build(q.data(), q.size(), margin);
@@ -343,15 +354,11 @@ TEST(BroadPhase, ExclusionGroupsLeaveOutExactlyThePairsWithinAGroup)
 
   // Two touching spheres, a group each: the self query gives exactly the
   // pairs of the query between the two spheres' hierarchies.
-  std::vector<double>          p;
-  std::vector<TriangleIndices> first, second;
-  estep_test::add_sphere(p, first, 0., 0., 0., 1., 40, 40);
-  estep_test::add_sphere(p, second, 1.98, 0.01, 0.02, 1., 40, 40);
-  std::vector<TriangleIndices> both = first;
-  both.insert(both.end(), second.begin(), second.end());
-  std::vector<unsigned int> body(both.size(), 0u);
-  std::fill(body.begin() + first.size(), body.end(), 1u);
-  BoundingVolumeHierarchy spheres(both, body), a(first), b(second);
+  const TouchingSpheres     two(40);
+  const auto               &p = two.q;
+  std::vector<unsigned int> body(two.both.size(), 0u);
+  std::fill(body.begin() + two.first.size(), body.end(), 1u);
+  BoundingVolumeHierarchy spheres(two.both, body), a(two.first), b(two.second);
   spheres.build(p.data(), p.size());
   a.build(p.data(), p.size());
   b.build(p.data(), p.size());
@@ -360,7 +367,7 @@ TEST(BroadPhase, ExclusionGroupsLeaveOutExactlyThePairsWithinAGroup)
   a.find_pairs(b, joining);
   ASSERT_GT(joining.size(), 5u);
   for (auto &[i, j] : joining)
-    j += first.size();
+    j += two.first.size();
   EXPECT_EQ(sorted(self), sorted(joining));
 
   // Groups set after construction take effect at the next build; a wrong
