@@ -105,10 +105,6 @@ namespace estep
     void
     PenaltyContact::set_exclusion_groups(std::vector<unsigned int> groups)
     {
-      if (!groups.empty() && groups.size() != bvh.n_triangles())
-        throw std::invalid_argument(
-          "PenaltyContact::set_exclusion_groups: one group per triangle "
-          "expected");
       bvh.set_exclusion_groups(std::move(groups));
     }
 
