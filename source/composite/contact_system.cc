@@ -423,13 +423,15 @@ namespace estep
       return std::nullopt;
     contact::CcdSettings settings;
     settings.tolerance = contact_parameters.ccd_tolerance;
-    const auto c       = contact::find_first_contact(triangles,
-                                               exclusion_groups,
-                                               q.data(),
-                                               v.data(),
-                                               q.size(),
-                                               s_max,
-                                               settings);
+    // Refitted boxes grow loose as the bodies move and turn: a new topology
+    // every 64 flights (the result does not depend on it).
+    if (!ccd_tree || ++ccd_flights == 64)
+      {
+        ccd_tree.emplace(triangles, exclusion_groups);
+        ccd_flights = 0;
+      }
+    const auto c = contact::find_first_contact(
+      *ccd_tree, q.data(), v.data(), q.size(), s_max, settings);
     if (!c)
       return std::nullopt;
     ConstraintEvent event;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
@@ -182,9 +183,24 @@ namespace estep
                        const double                        s_max,
                        const CcdSettings                  &settings)
     {
+      BoundingVolumeHierarchy tree(triangles, groups);
+      return find_first_contact(tree, q, v, n, s_max, settings);
+    }
+
+
+
+    std::optional<FirstContact>
+    find_first_contact(BoundingVolumeHierarchy &tree,
+                       const double            *q,
+                       const double            *v,
+                       const std::size_t        n,
+                       const double             s_max,
+                       const CcdSettings       &settings)
+    {
       if (!(s_max >= 0.) || !std::isfinite(s_max))
         throw std::invalid_argument(
           "find_first_contact: s_max must be finite and >= 0");
+      const auto &triangles = tree.get_triangles();
       if (triangles.empty())
         return std::nullopt;
       double max_q = 0., max_v = 0.;
@@ -194,15 +210,17 @@ namespace estep
           max_v = std::max(max_v, std::abs(v[i]));
         }
       // Boxes enlarged by the tolerance: pairs that come within it are
-      // examined (the CCD may report them).
-      BoundingVolumeHierarchy bvh(triangles, groups);
-      bvh.build_swept(q,
-                      v,
-                      n,
-                      s_max,
-                      settings.tolerance + 8. * unit * (max_q + s_max * max_v));
+      // examined (the CCD may report them). The tree's topology may be an
+      // earlier flight's: it changes the order of the pairs, which the
+      // queries are sorted out of, not the pairs.
+      tree.refit_swept(q,
+                       v,
+                       n,
+                       s_max,
+                       settings.tolerance +
+                         8. * unit * (max_q + s_max * max_v));
       std::vector<std::pair<unsigned int, unsigned int>> pairs;
-      bvh.find_pairs(pairs);
+      tree.find_pairs(pairs);
 
       std::vector<Query> queries;
       for (const auto &[i, j] : pairs)
@@ -227,11 +245,17 @@ namespace estep
                 queries.push_back({true, {{ea[0], ea[1], eb[0], eb[1]}}, o});
               }
         }
-      std::sort(queries.begin(),
-                queries.end(),
-                [](const Query &a, const Query &b) {
-                  return a.key() < b.key();
-                });
+      // In the order of their keys, and among equal keys (an edge pair that
+      // several triangle pairs give, each with its own orientation) of the
+      // bytes of their orientations (a total order, NaN included), so that
+      // the query kept below does not depend on the order of the pairs.
+      std::sort(
+        queries.begin(), queries.end(), [](const Query &a, const Query &b) {
+          return a.key() < b.key() ||
+                 (a.key() == b.key() && std::memcmp(a.orientation.data(),
+                                                    b.orientation.data(),
+                                                    sizeof(a.orientation)) < 0);
+        });
       queries.erase(std::unique(queries.begin(),
                                 queries.end(),
                                 [](const Query &a, const Query &b) {

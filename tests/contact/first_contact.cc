@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "test_meshes.h"
+
+#include <algorithm>
 #include <initializer_list>
 #include <vector>
 
@@ -105,4 +108,66 @@ TEST(FirstContact, TouchingPairsApproachOrSeparate)
       else
         EXPECT_FALSE(hit.has_value()) << "separating, hit at s = " << hit->s;
     }
+}
+
+TEST(FirstContact, KeptTreeGivesTheResultOfAFreshOne)
+{
+  // Two spheres (a group each) approach, spinning, over 40 flights from
+  // configurations that drift flight after flight: the overload that keeps
+  // its tree, refitted from earlier flights' configurations, finds the same
+  // contact as a tree built for each flight, to the last bit (point indices,
+  // flight parameter, weights, normal), with contacts found on most of them.
+  std::vector<double>          q;
+  std::vector<TriangleIndices> triangles, second;
+  estep_test::add_sphere(q, triangles, 0., 0., 0., 1., 16, 16);
+  const unsigned int first_size = triangles.size();
+  estep_test::add_sphere(q, second, 2.3, 0.1, 0.05, 1., 16, 16);
+  triangles.insert(triangles.end(), second.begin(), second.end());
+  std::vector<unsigned int> groups(triangles.size(), 0u);
+  std::fill(groups.begin() + first_size, groups.end(), 1u);
+  const std::size_t n = q.size(), half = n / 2;
+  // Ball 2 moves towards ball 1 and spins about the y axis through its
+  // centre; ball 1 spins about the z axis.
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; i += 3)
+    {
+      const bool   ball_two = i >= half;
+      const double cx = ball_two ? 2.3 : 0., cz = ball_two ? 0.05 : 0.;
+      const double x = q[i] - cx, y = q[i + 1], z = q[i + 2] - cz;
+      if (ball_two)
+        {
+          v[i]     = -1. + 0.8 * z;
+          v[i + 1] = 0.;
+          v[i + 2] = -0.8 * x;
+        }
+      else
+        {
+          v[i]     = -0.5 * y;
+          v[i + 1] = 0.5 * x;
+          v[i + 2] = 0.;
+        }
+    }
+  BoundingVolumeHierarchy kept(triangles, groups);
+  unsigned int            contacts = 0;
+  for (unsigned int flight = 0; flight < 40; ++flight)
+    {
+      const double        t = 0.01 * flight;
+      std::vector<double> x(n);
+      for (std::size_t i = 0; i < n; ++i)
+        x[i] = q[i] + t * v[i];
+      const double s_max = 0.5;
+      const auto   fresh =
+        find_first_contact(triangles, groups, x.data(), v.data(), n, s_max);
+      const auto again = find_first_contact(kept, x.data(), v.data(), n, s_max);
+      ASSERT_EQ(fresh.has_value(), again.has_value()) << "flight " << flight;
+      if (!fresh)
+        continue;
+      ++contacts;
+      EXPECT_EQ(fresh->s, again->s) << "flight " << flight;
+      EXPECT_EQ(fresh->edge_edge, again->edge_edge) << "flight " << flight;
+      EXPECT_EQ(fresh->points, again->points) << "flight " << flight;
+      EXPECT_EQ(fresh->weights, again->weights) << "flight " << flight;
+      EXPECT_EQ(fresh->normal, again->normal) << "flight " << flight;
+    }
+  EXPECT_GT(contacts, 20u);
 }

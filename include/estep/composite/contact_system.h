@@ -304,6 +304,11 @@ namespace estep
     std::vector<unsigned int>                triangle_body;
     std::vector<unsigned int>                exclusion_groups;
     std::unique_ptr<contact::PenaltyContact> penalty;
+    /** The swept broad phase of impenetrable contact, kept from flight to
+     * flight and refitted (first_constraint_event()), built anew every 64
+     * flights; and the flights since it was built. */
+    mutable std::optional<contact::BoundingVolumeHierarchy> ccd_tree;
+    mutable unsigned int                                    ccd_flights = 0;
     /** Per body: its boundary points (global numbers), its boundary
      * triangles (indices into triangles) and its longest boundary edge in
      * the reference configuration. */

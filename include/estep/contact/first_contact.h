@@ -75,6 +75,23 @@ namespace estep
                        const CcdSettings &settings = CcdSettings());
 
     /**
+     * The same, for the triangles and exclusion groups of @p tree, whose
+     * topology is kept: its boxes are refitted to the flight (it is built if
+     * it never was). Flight after flight this saves the tree's construction;
+     * the result is that of a tree built for the flight, since the candidate
+     * pairs are the same and their order does not matter. Refitted boxes
+     * grow loose as the surface moves away from the configuration the tree
+     * was built for: build it anew from time to time.
+     */
+    std::optional<FirstContact>
+    find_first_contact(BoundingVolumeHierarchy &tree,
+                       const double            *q,
+                       const double            *v,
+                       const std::size_t        n,
+                       const double             s_max,
+                       const CcdSettings       &settings = CcdSettings());
+
+    /**
      * The contact normal and weights (see FirstContact) of the primitive pair
      * @p points at the positions @p x (point i at x[3 i]); @p edge_edge
      * selects the kind. @p orientation is a direction the normal should have
