@@ -423,15 +423,13 @@ namespace estep
       return std::nullopt;
     contact::CcdSettings settings;
     settings.tolerance = contact_parameters.ccd_tolerance;
-    // Refitted boxes grow loose as the bodies move and turn: a new topology
-    // every 64 flights (the result does not depend on it).
-    if (!ccd_tree || ++ccd_flights == 64)
-      {
-        ccd_tree.emplace(triangles, exclusion_groups);
-        ccd_flights = 0;
-      }
-    const auto c = contact::find_first_contact(
-      *ccd_tree, q.data(), v.data(), q.size(), s_max, settings);
+    const auto c =
+      contact::find_first_contact(ccd_tree.get(triangles, exclusion_groups),
+                                  q.data(),
+                                  v.data(),
+                                  q.size(),
+                                  s_max,
+                                  settings);
     if (!c)
       return std::nullopt;
     ConstraintEvent event;
@@ -651,13 +649,29 @@ namespace estep
 
 
 
+  contact::BoundingVolumeHierarchy &
+  ContactSystem::KeptHierarchy::get(
+    const std::vector<contact::TriangleIndices> &triangles,
+    const std::vector<unsigned int>             &groups)
+  {
+    if (!tree || ++calls == 64)
+      {
+        tree.emplace(triangles, groups);
+        calls = 0;
+      }
+    return *tree;
+  }
+
+
+
   std::vector<std::pair<unsigned int, unsigned int>>
   ContactSystem::intersecting_pairs(const Vector &q) const
   {
-    contact::BoundingVolumeHierarchy bvh(triangles, exclusion_groups);
-    bvh.build(q.data(), q.size());
+    auto &bvh = intersection_tree.get(triangles, exclusion_groups);
+    bvh.refit(q.data(), q.size());
     std::vector<std::pair<unsigned int, unsigned int>> candidates, pairs;
     bvh.find_pairs(candidates);
+    std::sort(candidates.begin(), candidates.end());
     for (const auto &[i, j] : candidates)
       {
         if (contact::triangles_intersect(

@@ -9,6 +9,7 @@
 #include <estep/composite/contact_system.h>
 #include <estep/contact/penalty_contact.h>
 #include <estep/contact/penalty_flight.h>
+#include <estep/contact/triangle_intersection.h>
 #include <estep/fem/ball_mesh.h>
 
 #include <gtest/gtest.h>
@@ -113,6 +114,50 @@ TEST(ContactSystem, LayoutAndBoundaryMap)
         }
       EXPECT_GT(n[0] * x[0][0] + n[1] * x[0][1] + n[2] * x[0][2], 0.);
     }
+}
+
+TEST(ContactSystem, IntersectingPairsOfAKeptTreeAsByBruteForce)
+{
+  // The system keeps the tree of intersecting_pairs() and refits it from
+  // call to call (anew every 64 calls): over 80 configurations in which ball
+  // 2 sweeps through ball 1 and out again, deformed and turned, the pairs are
+  // those of the exact test on every pair of triangles of the two balls, in
+  // increasing order.
+  const auto        &system     = overlapping_balls();
+  const auto        &tris       = system.boundary_triangles();
+  const auto        &body       = system.triangle_bodies();
+  const Vector       X          = estep_test::reference(system);
+  const Vector       noise      = estep_test::random_vector(X.size(), 1e-2, 5);
+  const unsigned int first      = system.point_offset(1);
+  unsigned int       with_pairs = 0;
+  for (unsigned int k = 0; k < 80; ++k)
+    {
+      // Ball 2 (centre 1.8 on the x axis) moves to x = 0.9 + 2.4 |sin|,
+      // turning about the z axis through its centre.
+      const double shift = 2.4 * std::abs(std::sin(0.05 * k)) - 0.9;
+      const double angle = 0.1 * k;
+      Vector       q     = X;
+      q += noise;
+      for (unsigned int i = first; i < X.size() / 3; ++i)
+        {
+          const double x = X[3 * i] - 1.8, y = X[3 * i + 1];
+          q[3 * i] = 1.8 + shift + std::cos(angle) * x - std::sin(angle) * y;
+          q[3 * i + 1] = std::sin(angle) * x + std::cos(angle) * y;
+        }
+      std::vector<std::pair<unsigned int, unsigned int>> expected;
+      for (unsigned int i = 0; i < tris.size(); ++i)
+        for (unsigned int j = i + 1; j < tris.size(); ++j)
+          if (body[i] != body[j] &&
+              estep::contact::triangles_intersect(
+                estep::contact::triangle_at(q.data(), tris[i]),
+                estep::contact::triangle_at(q.data(), tris[j])))
+            expected.emplace_back(i, j);
+      EXPECT_EQ(system.intersecting_pairs(q), expected)
+        << "configuration " << k;
+      with_pairs += !expected.empty();
+    }
+  EXPECT_GT(with_pairs, 20u);
+  EXPECT_LT(with_pairs, 70u);
 }
 
 TEST(ContactSystem, GradientMatchesCentralDifferences)
