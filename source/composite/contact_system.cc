@@ -318,6 +318,11 @@ namespace estep
         for (unsigned int t = 0; t < triangles.size(); ++t)
           exclusion_groups[t] = std::min(t, n_body_triangles);
       }
+    for (auto *tree : {&ccd_tree, &intersection_tree})
+      {
+        *tree = contact::BoundingVolumeHierarchy(triangles, exclusion_groups);
+        tree->set_rebuild_interval(64);
+      }
 
     if (contact_parameters.mode == ContactParameters::Mode::penalty)
       {
@@ -423,13 +428,8 @@ namespace estep
       return std::nullopt;
     contact::CcdSettings settings;
     settings.tolerance = contact_parameters.ccd_tolerance;
-    const auto c =
-      contact::find_first_contact(ccd_tree.get(triangles, exclusion_groups),
-                                  q.data(),
-                                  v.data(),
-                                  q.size(),
-                                  s_max,
-                                  settings);
+    const auto c       = contact::find_first_contact(
+      ccd_tree, q.data(), v.data(), q.size(), s_max, settings);
     if (!c)
       return std::nullopt;
     ConstraintEvent event;
@@ -649,28 +649,12 @@ namespace estep
 
 
 
-  contact::BoundingVolumeHierarchy &
-  ContactSystem::KeptHierarchy::get(
-    const std::vector<contact::TriangleIndices> &triangles,
-    const std::vector<unsigned int>             &groups)
-  {
-    if (!tree || ++calls == 64)
-      {
-        tree.emplace(triangles, groups);
-        calls = 0;
-      }
-    return *tree;
-  }
-
-
-
   std::vector<std::pair<unsigned int, unsigned int>>
   ContactSystem::intersecting_pairs(const Vector &q) const
   {
-    auto &bvh = intersection_tree.get(triangles, exclusion_groups);
-    bvh.refit(q.data(), q.size());
+    intersection_tree.refit(q.data(), q.size());
     std::vector<std::pair<unsigned int, unsigned int>> candidates, pairs;
-    bvh.find_pairs(candidates);
+    intersection_tree.find_pairs(candidates);
     std::sort(candidates.begin(), candidates.end());
     for (const auto &[i, j] : candidates)
       {

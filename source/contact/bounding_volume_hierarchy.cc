@@ -255,6 +255,7 @@ namespace estep
       const std::size_t n = triangles.size();
       nodes.clear();
       order.clear();
+      refits_since_build = 0;
       if (n == 0)
         return;
       sort_by_morton_code();
@@ -376,12 +377,20 @@ namespace estep
 
 
 
+    bool
+    BoundingVolumeHierarchy::rebuild_due()
+    {
+      return rebuild_interval > 0 && ++refits_since_build >= rebuild_interval;
+    }
+
+
+
     void
     BoundingVolumeHierarchy::refit(const double     *q,
                                    const std::size_t n,
                                    const double      margin)
     {
-      if (!is_built())
+      if (!is_built() || rebuild_due())
         return build(q, n, margin);
       compute_boxes(q, nullptr, n, 0., margin);
       refit_tree();
@@ -396,7 +405,7 @@ namespace estep
                                          const double      s_max,
                                          const double      margin)
     {
-      if (!is_built())
+      if (!is_built() || rebuild_due())
         return build_swept(q, v, n, s_max, margin);
       compute_boxes(q, v, n, s_max, margin);
       refit_tree();

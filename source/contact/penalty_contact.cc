@@ -87,6 +87,7 @@ namespace estep
       : eps(eps)
       , bvh(std::move(triangles))
     {
+      bvh.set_rebuild_interval(64);
       if (!(eps > 0.) || !std::isfinite(eps))
         throw std::invalid_argument(
           "PenaltyContact: the penalty parameter eps must be "
@@ -116,13 +117,7 @@ namespace estep
                              double           *g,
                              unsigned int     *count) const
     {
-      if (!bvh.is_built() || ++n_refits >= rebuild_every)
-        {
-          bvh.build(q, n);
-          n_refits = 0;
-        }
-      else
-        bvh.refit(q, n);
+      bvh.refit(q, n);
       bvh.find_pairs(pairs);
       // The order of the sum below must not depend on the tree's history
       // (built here or refitted since): a resumed run, which builds it

@@ -305,26 +305,11 @@ namespace estep
     std::vector<unsigned int>                triangle_body;
     std::vector<unsigned int>                exclusion_groups;
     std::unique_ptr<contact::PenaltyContact> penalty;
-    /**
-     * A broad-phase tree over the boundary triangles kept from call to call
-     * and refitted by its user, built anew every 64 calls (refitted boxes
-     * grow loose as the bodies move and turn). Its topology changes the
-     * order of the pairs it finds, never the pairs.
-     */
-    struct KeptHierarchy
-    {
-      std::optional<contact::BoundingVolumeHierarchy> tree;
-      unsigned int                                    calls = 0;
-
-      /** The tree, new on the first call and every 64th. */
-      contact::BoundingVolumeHierarchy &
-      get(const std::vector<contact::TriangleIndices> &triangles,
-          const std::vector<unsigned int>             &groups);
-    };
     /** The swept broad phase of impenetrable contact
      * (first_constraint_event()) and the static one of intersecting_pairs(),
-     * which runs after every step (the contact monitor). */
-    mutable KeptHierarchy ccd_tree, intersection_tree;
+     * which runs after every step (the contact monitor): kept from call to
+     * call and refitted, built anew every 64 refits. */
+    mutable contact::BoundingVolumeHierarchy ccd_tree, intersection_tree;
     /** Per body: its boundary points (global numbers), its boundary
      * triangles (indices into triangles) and its longest boundary edge in
      * the reference configuration. */

@@ -87,7 +87,7 @@ namespace estep
        * std::invalid_argument otherwise).
        */
       explicit BoundingVolumeHierarchy(
-        std::vector<TriangleIndices> triangles,
+        std::vector<TriangleIndices> triangles        = {},
         std::vector<unsigned int>    exclusion_groups = {});
 
       /**
@@ -119,17 +119,32 @@ namespace estep
                   const double      margin = 0.);
 
       /** Recompute the boxes for a new configuration, keeping the tree (same as
-       * build's). */
+       * build's); build it if it is not built, or if the rebuild interval
+       * says so. */
       void
       refit(const double *q, const std::size_t n, const double margin = 0.);
 
-      /** Recompute the boxes for a new free flight, keeping the tree. */
+      /** Recompute the boxes for a new free flight, keeping the tree; build
+       * it as refit() does. */
       void
       refit_swept(const double     *q,
                   const double     *v,
                   const std::size_t n,
                   const double      s_max,
                   const double      margin = 0.);
+
+      /**
+       * Let every @p interval-th refit since the tree was built build it
+       * anew (0, the default: never). Refitted boxes grow loose as the
+       * surface moves and turns away from the configuration the tree was
+       * built for. The topology changes the speed and the order of the pairs
+       * found, never the pairs.
+       */
+      void
+      set_rebuild_interval(const unsigned int interval)
+      {
+        rebuild_interval = interval;
+      }
 
       /**
        * All pairs (i, j), i < j, of triangle numbers whose boxes overlap,
@@ -225,6 +240,10 @@ namespace estep
       void
       build_tree();
 
+      /** Counts a refit; whether it is the rebuild interval's. */
+      bool
+      rebuild_due();
+
       void
       refit_tree();
 
@@ -238,6 +257,8 @@ namespace estep
       /** The exclusion group of each triangle (empty: none), and in tree
        * order (each triangle its own group when there are none). */
       std::vector<unsigned int> groups, ordered_groups;
+      /** See set_rebuild_interval(); the refits since the last build. */
+      unsigned int rebuild_interval = 0, refits_since_build = 0;
       // Scratch of the construction (kept to avoid reallocation on rebuild):
       // Morton codes in tree order and the radix sort's buffers.
       std::vector<std::uint64_t> codes, code_buffer;

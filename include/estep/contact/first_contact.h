@@ -81,7 +81,8 @@ namespace estep
      * the result is that of a tree built for the flight, since the candidate
      * pairs are the same and their order does not matter. Refitted boxes
      * grow loose as the surface moves away from the configuration the tree
-     * was built for: build it anew from time to time.
+     * was built for: give the tree a rebuild interval
+     * (BoundingVolumeHierarchy::set_rebuild_interval()).
      */
     std::optional<FirstContact>
     find_first_contact(BoundingVolumeHierarchy &tree,

@@ -104,11 +104,12 @@ namespace estep
         return bvh.get_exclusion_groups();
       }
 
-      /** Rebuild the hierarchy every this many refits (default 64). */
+      /** Rebuild the hierarchy every this many refits (default 64; 0:
+       * never). */
       void
       set_rebuild_interval(const unsigned int interval)
       {
-        rebuild_every = interval;
+        bvh.set_rebuild_interval(interval);
       }
 
       /**
@@ -192,10 +193,8 @@ namespace estep
                double           *g,
                unsigned int     *count) const;
 
-      double                          eps;
-      unsigned int                    rebuild_every = 64;
-      mutable unsigned int            n_refits      = 0;
-      mutable BoundingVolumeHierarchy bvh;
+      double                                                     eps;
+      mutable BoundingVolumeHierarchy                            bvh;
       mutable std::vector<std::pair<unsigned int, unsigned int>> pairs;
     };
   } // namespace contact
