@@ -3,6 +3,7 @@
 
 #include <estep/base/distributed_blocks.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <numeric>
 
@@ -128,6 +129,24 @@ namespace estep
                          MPI_DOUBLE,
                          communicator()),
           "MPI_Allgatherv");
+  }
+
+
+
+  void
+  broadcast_from_first_rank(void *bytes, const std::size_t size)
+  {
+    if (rank_count() == 1)
+      return;
+    // In pieces that an int counts.
+    constexpr std::size_t piece = std::size_t(1) << 30;
+    for (std::size_t start = 0; start < size; start += piece)
+      check(MPI_Bcast(static_cast<char *>(bytes) + start,
+                      static_cast<int>(std::min(piece, size - start)),
+                      MPI_BYTE,
+                      0,
+                      communicator()),
+            "MPI_Bcast");
   }
 
 

@@ -1,8 +1,4 @@
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/grid/tria.h>
-
 #include <estep/composite/contact_system.h>
-#include <estep/contact/boundary_triangles.h>
 #include <estep/contact/first_contact.h>
 #include <estep/contact/penalty_contact.h>
 #include <estep/contact/penalty_flight.h>
@@ -253,38 +249,21 @@ namespace estep
     // Boundary triangles in global point numbers.
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        const ElasticBody        &body = *bodies[b];
-        const auto               &tria = body.triangulation();
-        std::vector<unsigned int> point_of_vertex(
-          tria.n_vertices(), std::numeric_limits<unsigned int>::max());
-        const Vector X = body.reference_configuration();
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const unsigned int point = cell->vertex_dof_index(v, 0) / 3;
-              const auto        &x     = cell->vertex(v);
-              for (unsigned int c = 0; c < 3; ++c)
-                if (std::abs(X[3 * point + c] - x[c]) >
-                    1e-12 * (1. + std::abs(x[c])))
-                  throw std::logic_error(
-                    "ContactSystem: the point numbering of body " +
-                    std::to_string(b) + " does not follow its DoFHandler");
-              point_of_vertex[cell->vertex_index(v)] = point;
-            }
+        const ElasticBody     &body = *bodies[b];
+        const Vector           X    = body.reference_configuration();
         std::set<unsigned int> points;
         double                 longest = 0.;
         body_triangles.emplace_back();
-        for (const auto &t : contact::boundary_triangles(tria))
+        for (const auto &t : body.cell_data().boundary_triangle)
           {
             contact::TriangleIndices global;
             for (unsigned int k = 0; k < 3; ++k)
               {
-                global[k] = offsets[b] + point_of_vertex[t[k]];
+                global[k] = offsets[b] + t[k];
                 points.insert(global[k]);
-                const contact::Point3 x0 =
-                  contact::point_at(X.data(), point_of_vertex[t[k]]);
+                const contact::Point3 x0 = contact::point_at(X.data(), t[k]);
                 const contact::Point3 x1 =
-                  contact::point_at(X.data(), point_of_vertex[t[(k + 1) % 3]]);
+                  contact::point_at(X.data(), t[(k + 1) % 3]);
                 const contact::Point3 edge = contact::minus(x1, x0);
                 longest = std::max(longest, contact::dot(edge, edge));
               }

@@ -1,16 +1,8 @@
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_simplex_p.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_fe.h>
-#include <deal.II/grid/tria.h>
 
 #include <estep/base/distributed_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
-#include <estep/fem/meshes.h>
 
 #include "p1_kernels.h"
 
@@ -20,21 +12,26 @@
 
 namespace estep
 {
-  struct ElasticBody::DealIIObjects
-  {
-    dealii::Triangulation<3, 3> tria;
-    dealii::FESystem<3>         fe{dealii::FE_SimplexP<3>(1), 3};
-    dealii::DoFHandler<3, 3>    dof_handler;
-  };
-
   ElasticBody::ElasticBody(const dealii::Triangulation<3, 3> &tria,
                            std::shared_ptr<const Material>    material,
                            const double                       density,
                            const std::string                 &name)
+    : ElasticBody(make_p1_cell_data(tria, density),
+                  std::move(material),
+                  density,
+                  name)
+  {}
+
+
+
+  ElasticBody::ElasticBody(P1CellData                      cell_data,
+                           std::shared_ptr<const Material> material,
+                           const double                    density,
+                           const std::string              &name)
     : body_name(name)
     , body_material(std::move(material))
     , rho(density)
-    , dealii_objects(std::make_unique<DealIIObjects>())
+    , data(std::move(cell_data))
     , total_volume(0.)
   {
     AssertThrow(body_material != nullptr,
@@ -43,122 +40,19 @@ namespace estep
                 dealii::ExcMessage(
                   "ElasticBody: the density must be positive (got " +
                   std::to_string(density) + ")."));
-    check_tetrahedral_mesh(tria);
-
-    auto &objects = *dealii_objects;
-    objects.tria.copy_triangulation(tria);
-    objects.dof_handler.reinit(objects.tria);
-    objects.dof_handler.distribute_dofs(objects.fe);
-
-    const auto &fe = objects.fe;
-    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
-      AssertThrow(fe.system_to_component_index(k).first == k % 3 &&
-                    fe.system_to_component_index(k).second == k / 3,
-                  dealii::ExcInternalError());
-
-    data.n_cells                = objects.tria.n_active_cells();
-    data.n_points               = objects.dof_handler.n_dofs() / 3;
     const unsigned int n_padded = data.n_padded_cells();
-    for (auto &v : data.point)
-      v.resize(n_padded);
-    for (auto &v : data.shape_gradient)
-      v.resize(n_padded);
-    data.volume.resize(n_padded);
-    data.reference_position.assign(3 * data.n_points, 0.);
-    data.lumped_mass.assign(data.n_points, 0.);
-
-    // Geometry: points, B = D_m^-1, volume.
-    std::vector<dealii::types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : objects.dof_handler.active_cell_iterators())
-      {
-        const unsigned int e = cell->active_cell_index();
-        cell->get_dof_indices(dofs);
-        for (unsigned int a = 0; a < 4; ++a)
-          {
-            const unsigned int p = dofs[3 * a] / 3;
-            for (unsigned int c = 0; c < 3; ++c)
-              {
-                AssertThrow(dofs[3 * a + c] == 3 * p + c,
-                            dealii::ExcInternalError());
-                data.reference_position[3 * p + c] = cell->vertex(a)[c];
-              }
-            data.point[a][e] = p;
-          }
-        dealii::Tensor<2, 3> Dm;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int i = 0; i < 3; ++i)
-            Dm[i][a] = cell->vertex(a + 1)[i] - cell->vertex(0)[i];
-        const double det             = dealii::determinant(Dm);
-        data.volume[e]               = det / 6.;
-        const dealii::Tensor<2, 3> B = dealii::invert(Dm);
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int j = 0; j < 3; ++j)
-            data.shape_gradient[3 * a + j][e] = B[a][j];
-        total_volume += data.volume[e];
-      }
-    // The padding of the last batch of four cells: copies of the last cell
-    // with volume 0.
-    for (unsigned int e = data.n_cells; e < n_padded; ++e)
-      {
-        for (auto &v : data.point)
-          v[e] = v[data.n_cells - 1];
-        for (auto &v : data.shape_gradient)
-          v[e] = v[data.n_cells - 1];
-        data.volume[e] = 0.;
-      }
-
-    // Lumped mass with deal.II (row sums of the consistent mass of the scalar
-    // P1 element), checked against the geometry above: volume, rho |Omega_e| /
-    // 4 and the gradients.
-    const dealii::FE_SimplexP<3>   scalar_fe(1);
-    const dealii::MappingFE<3>     mapping(scalar_fe);
-    const dealii::QGaussSimplex<3> quadrature(2);
-    dealii::FEValues<3>            fe_values(mapping,
-                                  scalar_fe,
-                                  quadrature,
-                                  dealii::update_values |
-                                    dealii::update_gradients |
-                                    dealii::update_JxW_values);
-    for (const auto &cell : objects.tria.active_cell_iterators())
-      {
-        const unsigned int e = cell->active_cell_index();
-        fe_values.reinit(cell);
-        double volume = 0.;
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          volume += fe_values.JxW(q);
-        const double tolerance = 1e-10;
-        AssertThrow(std::abs(volume - data.volume[e]) <=
-                      tolerance * data.volume[e],
-                    dealii::ExcMessage(
-                      "ElasticBody: the volume of cell " + std::to_string(e) +
-                      " from FEValues disagrees with the geometry."));
-        for (unsigned int a = 0; a < 4; ++a)
-          {
-            double row_sum = 0.;
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              for (unsigned int b = 0; b < 4; ++b)
-                row_sum += density * fe_values.shape_value(a, q) *
-                           fe_values.shape_value(b, q) * fe_values.JxW(q);
-            AssertThrow(std::abs(row_sum - 0.25 * density * data.volume[e]) <=
-                          tolerance * density * data.volume[e],
-                        dealii::ExcMessage(
-                          "ElasticBody: lumped mass check failed on cell " +
-                          std::to_string(e) + "."));
-            data.lumped_mass[data.point[a][e]] += row_sum;
-            if (a > 0)
-              for (unsigned int j = 0; j < 3; ++j)
-                {
-                  const double B_aj = data.shape_gradient[3 * (a - 1) + j][e];
-                  AssertThrow(std::abs(fe_values.shape_grad(a, 0)[j] - B_aj) <=
-                                tolerance * (1. + std::abs(B_aj)) *
-                                  std::cbrt(1. / data.volume[e]),
-                              dealii::ExcMessage(
-                                "ElasticBody: shape gradient check failed "
-                                "on cell " +
-                                std::to_string(e) + "."));
-                }
-          }
-      }
+    bool complete = data.n_cells > 0 && data.volume.size() == n_padded &&
+                    data.reference_position.size() == 3 * data.n_points &&
+                    data.lumped_mass.size() == data.n_points &&
+                    data.boundary_id.size() == data.boundary_triangle.size();
+    for (const auto &v : data.point)
+      complete = complete && v.size() == n_padded;
+    for (const auto &v : data.shape_gradient)
+      complete = complete && v.size() == n_padded;
+    AssertThrow(complete,
+                dealii::ExcMessage("ElasticBody: incomplete cell data."));
+    for (unsigned int e = 0; e < data.n_cells; ++e)
+      total_volume += data.volume[e];
 
     inv_mass.reinit(3 * data.n_points);
     for (unsigned int i = 0; i < data.n_points; ++i)
@@ -582,17 +476,6 @@ namespace estep
     return data;
   }
 
-  const dealii::Triangulation<3, 3> &
-  ElasticBody::triangulation() const
-  {
-    return dealii_objects->tria;
-  }
-
-  const dealii::DoFHandler<3, 3> &
-  ElasticBody::dof_handler() const
-  {
-    return dealii_objects->dof_handler;
-  }
 } // namespace estep
 
 

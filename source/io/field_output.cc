@@ -3,7 +3,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
@@ -47,8 +49,11 @@ namespace estep
       , rank(this_rank())
       , ranks(rank_count())
     {
-      if (format != Format::vtu)
-        return;
+      if (format == Format::hdf5)
+        {
+          make_dof_handler(bodies.body(0).cell_data());
+          return;
+        }
       for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
         {
           const P1CellData &cells = bodies.body(b).cell_data();
@@ -124,6 +129,43 @@ namespace estep
       pvd_written = std::chrono::steady_clock::now();
     }
     std::vector<dealii::XDMFEntry> xdmf_entries;
+
+    /** Format hdf5: a deal.II mesh of the body for DataOut, its cells
+     * those of the body in their order, and for each degree of freedom the
+     * body's coordinate (3 p + c for component c of point p). */
+    dealii::Triangulation<3>  tria;
+    dealii::DoFHandler<3>     dof_handler;
+    std::vector<unsigned int> coordinate_of_dof;
+
+    void
+    make_dof_handler(const P1CellData &cells)
+    {
+      std::vector<dealii::Point<3>> vertices(cells.n_points);
+      for (unsigned int p = 0; p < cells.n_points; ++p)
+        for (unsigned int c = 0; c < 3; ++c)
+          vertices[p][c] = cells.reference_position[3 * p + c];
+      std::vector<dealii::CellData<3>> cell_list(cells.n_cells,
+                                                 dealii::CellData<3>(4));
+      for (unsigned int e = 0; e < cells.n_cells; ++e)
+        for (unsigned int a = 0; a < 4; ++a)
+          cell_list[e].vertices[a] = cells.point[a][e];
+      tria.create_triangulation(vertices, cell_list, dealii::SubCellData());
+      dof_handler.reinit(tria);
+      dof_handler.distribute_dofs(
+        dealii::FESystem<3>(dealii::FE_SimplexP<3>(1), 3));
+      coordinate_of_dof.resize(dof_handler.n_dofs());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        for (const unsigned int a : cell->vertex_indices())
+          {
+            // The cells keep their order and vertices (checked, as the cell
+            // fields are written by cell number).
+            const unsigned int p = cell->vertex_index(a);
+            AssertThrow(p == cells.point[a][cell->active_cell_index()],
+                        dealii::ExcInternalError());
+            for (unsigned int c = 0; c < 3; ++c)
+              coordinate_of_dof[cell->vertex_dof_index(a, c)] = 3 * p + c;
+          }
+    }
   };
 
 
@@ -392,17 +434,21 @@ namespace estep
     // HDF5/XDMF through deal.II's DataOut (one body).
     const ElasticBody &body = self.bodies.body(0);
     self.bodies.body_state(snapshot.q, snapshot.v, 0, q, v);
-    std::vector<double> displacement(q.begin(), q.end()),
-      velocity(v.begin(), v.end()), J, W;
-    for (unsigned int k = 0; k < displacement.size(); ++k)
-      displacement[k] -= body.cell_data().reference_position[k];
+    const std::vector<double> &X = body.cell_data().reference_position;
+    dealii::Vector<double>     displacement_vector(q.size()),
+      velocity_vector(q.size());
+    for (unsigned int k = 0; k < q.size(); ++k)
+      {
+        const unsigned int i   = self.coordinate_of_dof[k];
+        displacement_vector[k] = q[i] - X[i];
+        velocity_vector[k]     = v[i];
+      }
+    std::vector<double> J, W;
     body.cell_fields(q, {0, body.n_cells()}, J, W);
-    dealii::Vector<double> displacement_vector(displacement.begin(),
-                                               displacement.end()),
-      velocity_vector(velocity.begin(), velocity.end()),
-      cell_J(J.begin(), J.end()), cell_W(W.begin(), W.end());
+    dealii::Vector<double> cell_J(J.begin(), J.end()),
+      cell_W(W.begin(), W.end());
     dealii::DataOut<3> data_out;
-    data_out.attach_dof_handler(body.dof_handler());
+    data_out.attach_dof_handler(self.dof_handler);
     const std::vector<
       dealii::DataComponentInterpretation::DataComponentInterpretation>
       vector_field(

@@ -111,12 +111,15 @@ namespace estep
       prm.leave_subsection();
       prm.enter_subsection("Elastic body");
 
-      dealii::Triangulation<3> tria;
-      make_mesh(mesh, tria, "Elastic body");
-      auto body = std::make_unique<ElasticBodyWithHessian>(tria,
-                                                           material.material,
-                                                           material.density,
-                                                           "elastic body");
+      auto body = std::make_unique<ElasticBodyWithHessian>(
+        make_p1_cell_data_on_first_rank(
+          [&](dealii::Triangulation<3> &tria) {
+            make_mesh(mesh, tria, "Elastic body");
+          },
+          material.density),
+        material.material,
+        material.density,
+        "elastic body");
       body->track_point("tracked",
                         parse_point(prm.get("Tracked point"),
                                     "Elastic body/Tracked point"));

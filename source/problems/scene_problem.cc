@@ -302,29 +302,18 @@ namespace estep
       std::vector<unsigned int>          fixed_points;
     };
 
-    /** The body points (of @p body) at the vertices of the boundary faces
-     * with one of @p ids. */
+    /** The points of @p body at the vertices of its boundary faces with one
+     * of @p ids. */
     std::vector<unsigned int>
-    points_on_boundary(const dealii::Triangulation<3> &tria,
-                       const ElasticBody              &body,
-                       const std::set<unsigned int>   &ids)
+    points_on_boundary(const ElasticBody            &body,
+                       const std::set<unsigned int> &ids)
     {
-      std::map<Point3, unsigned int> point_of;
-      const Vector                  &X = body.reference_configuration();
-      for (unsigned int i = 0; 3 * i < X.size(); ++i)
-        point_of[{{X[3 * i], X[3 * i + 1], X[3 * i + 2]}}] = i;
+      const P1CellData      &data = body.cell_data();
       std::set<unsigned int> points;
-      for (const auto &cell : tria.active_cell_iterators())
-        for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              ids.count(cell->face(f)->boundary_id()) > 0)
-            for (const auto v : cell->face(f)->vertex_indices())
-              {
-                const auto &x  = cell->face(f)->vertex(v);
-                const auto  it = point_of.find({{x[0], x[1], x[2]}});
-                if (it != point_of.end())
-                  points.insert(it->second);
-              }
+      for (unsigned int f = 0; f < data.boundary_triangle.size(); ++f)
+        if (ids.count(data.boundary_id[f]) > 0)
+          points.insert(data.boundary_triangle[f].begin(),
+                        data.boundary_triangle[f].end());
       return {points.begin(), points.end()};
     }
 
@@ -338,9 +327,6 @@ namespace estep
       prm.enter_subsection("Mesh");
       mesh.parse_parameters(prm);
       prm.leave_subsection();
-      dealii::Triangulation<3> tria;
-      make_mesh(mesh, tria, section);
-
       prm.enter_subsection("Placement");
       const double scale = prm.get_double("Scale");
       const Point3 axis  = parse_point(prm.get("Rotation axis"),
@@ -352,30 +338,32 @@ namespace estep
       if (!(scale > 0.))
         throw std::runtime_error(section +
                                  "/Placement/Scale: must be positive.");
-      if (scale != 1.)
-        dealii::GridTools::scale(scale, tria);
-      if (angle != 0.)
-        {
-          dealii::Tensor<1, 3> a({axis[0], axis[1], axis[2]});
-          if (!(a.norm() > 0.))
-            throw std::runtime_error(section +
-                                     "/Placement/Rotation axis: must not be "
-                                     "zero.");
-          dealii::GridTools::rotate(a / a.norm(), angle * M_PI / 180., tria);
-        }
-      dealii::GridTools::shift(
-        dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}), tria);
+      const dealii::Tensor<1, 3> rotation_axis({axis[0], axis[1], axis[2]});
+      if (angle != 0. && !(rotation_axis.norm() > 0.))
+        throw std::runtime_error(section +
+                                 "/Placement/Rotation axis: must not be "
+                                 "zero.");
 
       prm.enter_subsection("Material");
       const MaterialChoice material =
         parse_material_parameters(prm, section + "/Material");
       prm.leave_subsection();
-      auto body =
-        std::make_shared<ElasticBodyWithHessian>(tria,
-                                                 material.material,
-                                                 material.density,
-                                                 "body " +
-                                                   std::to_string(b + 1));
+      const auto make_placed_mesh = [&](dealii::Triangulation<3> &tria) {
+        make_mesh(mesh, tria, section);
+        if (scale != 1.)
+          dealii::GridTools::scale(scale, tria);
+        if (angle != 0.)
+          dealii::GridTools::rotate(rotation_axis / rotation_axis.norm(),
+                                    angle * M_PI / 180.,
+                                    tria);
+        dealii::GridTools::shift(
+          dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}), tria);
+      };
+      auto body = std::make_shared<ElasticBodyWithHessian>(
+        make_p1_cell_data_on_first_rank(make_placed_mesh, material.density),
+        material.material,
+        material.density,
+        "body " + std::to_string(b + 1));
       const Vector X = body->reference_configuration();
       if (const std::string tracked = prm.get("Tracked point");
           !tracked.empty())
@@ -413,7 +401,7 @@ namespace estep
       std::set<unsigned int> fixed;
       if (!ids.empty())
         {
-          const auto points = points_on_boundary(tria, *body, ids);
+          const auto points = points_on_boundary(*body, ids);
           if (points.empty())
             throw std::runtime_error(section +
                                      "/Supports/Boundary ids: no boundary "

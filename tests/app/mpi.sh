@@ -4,7 +4,7 @@
 # block order. With and without contact. A run on 2 processes ended by SIGTERM resumes on 1 to
 # the same end, and one on 1 resumes on 2. Field output writes a piece per process. An output
 # that fails mid-run ends every process. A system without elastic cells, or with fewer cells
-# than processes, is refused.
+# than processes, is refused; so is a mesh the first process (which alone builds it) cannot read.
 # Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
 # MPIEXEC, the MPI launcher.
@@ -62,8 +62,10 @@ same_on_ranks impenetrable "${balls[@]}" --set "Contact/Mode=impenetrability"
 # SIGTERM to the launcher after the first checkpoint: it passes the signal to both processes,
 # which end after the same step (status interrupted, a final checkpoint; each exits with 143,
 # Open MPI's launcher, signalled itself, with 1); resumed on 1
-# process, the run ends where the one on 1 process without a stop ends.
-long_cube=("${cube[@]}" --set "Time integration/End time=8")
+# process, the run ends where the one on 1 process without a stop ends. Open MPI's launcher
+# passes the signal on about a second late, so the run must last well beyond that (to t = 8 it
+# took 0.9 s and completed first).
+long_cube=("${cube[@]}" --set "Time integration/End time=30")
 "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=whole" > whole.txt 2>&1 ||
   fail "the cube to t = 8 on 1 process: $(tail -2 whole.txt)"
 "${mpi[@]}" "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed" > stopped.txt 2>&1 &
@@ -140,16 +142,18 @@ for piece in pieces:
 assert 4 * first == len(whole["connectivity"]), first
 print(f"field output on 2 processes: {len(pieces)} pieces of {first} cells in all, as on 1 process")
 PY
-"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=30" --threads 1 \
   --set "Output directory=fields-whole" > fields-whole.txt 2>&1 ||
-  fail "field output on 2 processes to t = 8: $(tail -2 fields-whole.txt)"
-"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+  fail "field output on 2 processes to t = 30: $(tail -2 fields-whole.txt)"
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=30" --threads 1 \
   --set "Output directory=fields-resumed" > fields-stopped.txt 2>&1 &
 pid=$!
 while kill -0 $pid 2> /dev/null && [[ ! -f fields-resumed/checkpoint.bin ]]; do sleep 0.02; done
 kill -TERM $pid 2> /dev/null
 wait $pid
-"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=8" --threads 1 \
+grep -q '"status": "interrupted"' fields-resumed/summary.json ||
+  fail "field output on 2 processes: SIGTERM did not interrupt the run"
+"${mpi[@]}" "$ESTEP" "${fields[@]}" --set "Time integration/End time=30" --threads 1 \
   --set "Output directory=fields-resumed" --resume > fields-resumed.txt 2>&1 ||
   fail "the resume on 2 processes: $(tail -2 fields-resumed.txt)"
 for file in checkpoint.bin history.csv fields/solution-00016.pvtu fields/solution-00016-p1.vtu; do
@@ -209,6 +213,9 @@ $EndElements
 MSH
 refused one_cell "more than the 1 cells" "$files/spinning_cube.prm" \
   --set "Elastic body/Mesh/Type=gmsh" --set "Elastic body/Mesh/File name=one_cell.msh"
+# Only the first process builds the mesh; the error it meets ends every process.
+refused missing_mesh "cannot open the gmsh file 'missing.msh'" "$files/spinning_cube.prm" \
+  --set "Elastic body/Mesh/Type=gmsh" --set "Elastic body/Mesh/File name=missing.msh"
 
 if ((failures > 0)); then
   echo "$failures failures"

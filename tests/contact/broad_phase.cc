@@ -1,13 +1,9 @@
 // Broad phase: the hierarchy finds exactly the overlapping, non-adjacent pairs
 // within one surface and between two surfaces (static, refitted, with margin
-// and swept), also on structured meshes and degenerate inputs, and the deal.II
-// adapter extracts a closed, outward-oriented surface.
+// and swept), also on structured meshes and degenerate inputs.
 
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/tria.h>
 
 #include <estep/base/parallel_blocks.h>
-#include <estep/contact/boundary_triangles.h>
 #include <estep/contact/bounding_volume_hierarchy.h>
 #include <estep/contact/triangle_intersection.h>
 
@@ -423,37 +419,4 @@ TEST(BroadPhase, BadInputThrows)
   BoundingVolumeHierarchy bvh(std::vector<TriangleIndices>{{{0, 1, 7}}});
   std::vector<double>     q(9, 0.);
   EXPECT_THROW(bvh.build(q.data(), q.size()), std::invalid_argument);
-}
-
-TEST(BoundaryTriangles, ClosedOutwardSurfaceOfSimplexCube)
-{
-  dealii::Triangulation<3> tria;
-  dealii::GridGenerator::subdivided_hyper_cube_with_simplices(tria, 2, 0., 2.);
-  const std::vector<TriangleIndices> tris = boundary_triangles(tria);
-  EXPECT_EQ(tris.size(), 6u * 4u * 2u);
-  // Divergence theorem: sum of centroid . area-normal / 3 is the volume 8.
-  double                                               volume = 0.;
-  std::map<std::pair<unsigned int, unsigned int>, int> edge_use;
-  for (const auto &t : tris)
-    {
-      dealii::Point<3> p[3];
-      for (unsigned int a = 0; a < 3; ++a)
-        p[a] = tria.get_vertices()[t[a]];
-      const dealii::Tensor<1, 3> n =
-        dealii::cross_product_3d(p[1] - p[0], p[2] - p[0]) / 2.;
-      volume += ((p[0] + p[1] + p[2]) / 3.) * n / 3.;
-      for (unsigned int a = 0; a < 3; ++a)
-        ++edge_use[{t[a], t[(a + 1) % 3]}];
-    }
-  EXPECT_NEAR(volume, 8., 1e-12);
-  // Closed and consistently oriented: every directed edge once, its reverse
-  // once.
-  for (const auto &[e, n] : edge_use)
-    {
-      EXPECT_EQ(n, 1);
-      EXPECT_EQ(edge_use.count({e.second, e.first}), 1u);
-    }
-  dealii::Triangulation<3> hex;
-  dealii::GridGenerator::hyper_cube(hex);
-  EXPECT_THROW(boundary_triangles(hex), std::invalid_argument);
 }

@@ -14,6 +14,7 @@
 #include "test_bodies.h"
 
 #include <cmath>
+#include <map>
 
 namespace
 {
@@ -44,6 +45,96 @@ namespace
         EXPECT_NEAR(body.point_mass(i), m[i], 1e-16);
         EXPECT_EQ(body.inverse_mass()[3 * i], 1. / body.point_mass(i));
       }
+  }
+
+  TEST(ElasticBody, BoundaryFacesCloseOutwardWithTheirIds)
+  {
+    dealii::Triangulation<3> tria;
+    dealii::GridGenerator::subdivided_hyper_cube_with_simplices(tria,
+                                                                2,
+                                                                0.,
+                                                                2.);
+    // Id 2 d + s on the side x_d = 2 s.
+    for (const auto &cell : tria.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          for (unsigned int d = 0; d < 3; ++d)
+            for (unsigned int side = 0; side < 2; ++side)
+              if (face->center()[d] == 2. * side)
+                face->set_boundary_id(2 * d + side);
+    const estep::P1CellData data = estep::make_p1_cell_data(tria, 1.);
+    ASSERT_EQ(data.boundary_triangle.size(), 6u * 4u * 2u);
+    ASSERT_EQ(data.boundary_id.size(), data.boundary_triangle.size());
+    const auto X = [&](const unsigned int p, const unsigned int c) {
+      return data.reference_position[3 * p + c];
+    };
+    // Divergence theorem: the sum of centroid . area-normal / 3 is the
+    // volume 8.
+    double                                               volume = 0.;
+    std::map<std::pair<unsigned int, unsigned int>, int> edge_use;
+    std::vector<int>                                     faces_per_id(6, 0);
+    for (unsigned int f = 0; f < data.boundary_triangle.size(); ++f)
+      {
+        const auto &t = data.boundary_triangle[f];
+        double      a[3], b[3], n[3];
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            a[c] = X(t[1], c) - X(t[0], c);
+            b[c] = X(t[2], c) - X(t[0], c);
+          }
+        for (unsigned int c = 0; c < 3; ++c)
+          n[c] = (a[(c + 1) % 3] * b[(c + 2) % 3] -
+                  a[(c + 2) % 3] * b[(c + 1) % 3]) /
+                 2.;
+        for (unsigned int c = 0; c < 3; ++c)
+          volume += (X(t[0], c) + X(t[1], c) + X(t[2], c)) / 3. * n[c] / 3.;
+        for (unsigned int k = 0; k < 3; ++k)
+          ++edge_use[{t[k], t[(k + 1) % 3]}];
+        // On the side of its id, its normal outward.
+        const unsigned int id = data.boundary_id[f];
+        ASSERT_LT(id, 6u);
+        ++faces_per_id[id];
+        const unsigned int d = id / 2;
+        for (unsigned int k = 0; k < 3; ++k)
+          EXPECT_EQ(X(t[k], d), 2. * (id % 2));
+        EXPECT_GT(n[d] * (id % 2 == 1 ? 1. : -1.), 0.);
+      }
+    EXPECT_NEAR(volume, 8., 1e-12);
+    for (unsigned int id = 0; id < 6; ++id)
+      EXPECT_EQ(faces_per_id[id], 8);
+    // Closed and consistently oriented: every directed edge once, its reverse
+    // once.
+    for (const auto &[e, n] : edge_use)
+      {
+        EXPECT_EQ(n, 1);
+        EXPECT_EQ(edge_use.count({e.second, e.first}), 1u);
+      }
+    dealii::Triangulation<3> hex;
+    dealii::GridGenerator::hyper_cube(hex);
+    EXPECT_THROW(estep::make_p1_cell_data(hex, 1.), dealii::ExceptionBase);
+  }
+
+  TEST(ElasticBody, BuiltFromItsCellDataAsFromItsMesh)
+  {
+    dealii::Triangulation<3> tria;
+    dealii::GridGenerator::subdivided_hyper_cube_with_simplices(tria, 3);
+    const auto material = std::make_shared<estep::NeoHookean>(0.0100, 0.0066);
+    const estep::ElasticBody from_mesh(tria, material, 2.);
+    const estep::ElasticBody from_data(estep::make_p1_cell_data(tria, 2.),
+                                       material,
+                                       2.);
+    EXPECT_EQ(from_data.mass(), from_mesh.mass());
+    EXPECT_EQ(from_data.volume(), from_mesh.volume());
+    const estep::Vector q = from_mesh.reference_configuration();
+    estep::Vector       x(q);
+    for (unsigned int i = 0; i < x.size(); ++i)
+      x[i] *= 1. + 0.01 * std::sin(i);
+    EXPECT_EQ(from_data.energy(x), from_mesh.energy(x));
+    // Incomplete arrays are refused.
+    estep::P1CellData missing = estep::make_p1_cell_data(tria, 2.);
+    missing.lumped_mass.pop_back();
+    EXPECT_THROW(estep::ElasticBody(missing, material, 2.),
+                 dealii::ExceptionBase);
   }
 
   TEST(ElasticBody, SpinningCubeKineticEnergyAndAngularMomentum)

@@ -65,6 +65,27 @@ namespace estep
                         const std::vector<unsigned int> &counts,
                         double                          *all);
 
+  /**
+   * @p size bytes at @p bytes, on every rank as the first rank holds them.
+   * Collective: every rank must call it with the same size.
+   */
+  void
+  broadcast_from_first_rank(void *bytes, const std::size_t size);
+
+  /** @p vector, resized, on every rank as the first rank holds it. T must be
+   * trivially copyable. Collective. */
+  template <typename T>
+  void
+  broadcast_from_first_rank(std::vector<T> &vector)
+  {
+    static_assert(std::is_trivially_copyable_v<T>,
+                  "vectors are sent between ranks as bytes");
+    std::size_t size = vector.size();
+    broadcast_from_first_rank(&size, sizeof(size));
+    vector.resize(size);
+    broadcast_from_first_rank(vector.data(), size * sizeof(T));
+  }
+
   /** The largest of the ranks' @p value. Collective. */
   int
   largest_over_ranks(const int value);

@@ -57,10 +57,8 @@ namespace estep
    * system_motion(), the rigid-motion observables, extract()) ignores the
    * surface points.
    *
-   * The boundary triangles come from contact::boundary_triangles() on each
-   * body's triangulation, mapped from triangulation vertex numbers to the
-   * body's point numbers (through its DoFHandler, checked against the
-   * reference positions).
+   * The boundary triangles are each body's (P1CellData::boundary_triangle),
+   * in the composite's point numbers.
    *
    * Not thread-safe (caches in the bodies and the contact term).
    */

@@ -52,9 +52,9 @@ namespace estep
     {
     public:
       /**
-       * @p triangles: vertex-index triples of the surface triangles (e.g. from
-       * boundary_triangles()); @p eps > 0 the penalty parameter. Throws
-       * std::invalid_argument for eps <= 0 or a repeated index within a
+       * @p triangles: vertex-index triples of the surface triangles (e.g. the
+       * boundary faces of an elastic body); @p eps > 0 the penalty parameter.
+       * Throws std::invalid_argument for eps <= 0 or a repeated index within a
        * triangle.
        */
       PenaltyContact(std::vector<TriangleIndices> triangles, const double eps);

@@ -29,8 +29,7 @@ namespace estep
     /**
      * Where the point @p p lies with respect to the closed surface made of
      * the triangles @p triangles (point numbers into the point-major
-     * coordinates @p x), oriented with outward normals as
-     * boundary_triangles() orients them.
+     * coordinates @p x), oriented with outward normals.
      */
     struct PointAndSurface
     {

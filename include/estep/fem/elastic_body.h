@@ -17,8 +17,6 @@ namespace dealii
 {
   template <int dim, int spacedim>
   class Triangulation;
-  template <int dim, int spacedim>
-  class DoFHandler;
 } // namespace dealii
 
 namespace estep
@@ -32,7 +30,7 @@ namespace estep
    * Coordinates q are the current positions of the mesh vertices ("points"),
    * point-major: q[3 i + c] is component c of point i, with points numbered as
    * the DoFHandler of FESystem<3>(FE_SimplexP<3>(1), 3) numbers its vertex dofs
-   * (see P1CellData; dof_handler() gives that DoFHandler for output). The
+   * (see P1CellData). The
    * potential energy is
    * @f[ V(q) = \sum_e |\Omega_e| \, W(F_e(q)), @f]
    * with W the strain energy density of the Material relative to the undeformed
@@ -43,9 +41,8 @@ namespace estep
    * deal.II FEValues (FE_SimplexP, QGaussSimplex, MappingFE) once and checked
    * against the geometric formula.
    *
-   * The constructor copies the mesh and precomputes P1CellData; energy(),
-   * gradient() and free_flight() then loop over plain arrays and never call
-   * deal.II.
+   * The constructor computes the P1CellData of the mesh and keeps no deal.II
+   * object: energy(), gradient() and free_flight() loop over plain arrays.
    *
    * Its loops over cells run on the threads of thread_count() (see
    * parallel_blocks.h) and, in a run on several MPI ranks, on the ranks'
@@ -67,6 +64,17 @@ namespace estep
                 std::shared_ptr<const Material>    material,
                 const double                       density,
                 const std::string                 &name = "elastic body");
+
+    /**
+     * The body of the mesh @p cell_data describes (make_p1_cell_data() of
+     * its mesh, with the lumped mass of @p density), e.g. as another MPI
+     * rank made it. Throws dealii::ExcMessage if the arrays are incomplete
+     * or a point has no mass.
+     */
+    ElasticBody(P1CellData                      cell_data,
+                std::shared_ptr<const Material> material,
+                const double                    density,
+                const std::string              &name = "elastic body");
 
     ~ElasticBody() override;
 
@@ -149,15 +157,6 @@ namespace estep
     const P1CellData &
     cell_data() const;
 
-    /** The body's own copy of the mesh. */
-    const dealii::Triangulation<3, 3> &
-    triangulation() const;
-
-    /** The DoFHandler of FESystem<3>(FE_SimplexP<3>(1), 3) whose dof numbering
-     * q follows. */
-    const dealii::DoFHandler<3, 3> &
-    dof_handler() const;
-
     /** @name One body seen as ElasticBodies (for field output). @{ */
     unsigned int
     n_bodies() const override;
@@ -213,12 +212,9 @@ namespace estep
     observables(const Vector &q, const Vector &v) const override;
 
   private:
-    struct DealIIObjects;
-
     std::string                     body_name;
     std::shared_ptr<const Material> body_material;
     double                          rho;
-    std::unique_ptr<DealIIObjects>  dealii_objects;
     P1CellData                      data;
     double                          total_volume;
     Vector                          inv_mass;

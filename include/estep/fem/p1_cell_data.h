@@ -2,14 +2,22 @@
 #define estep_fem_p1_cell_data_h
 
 #include <array>
+#include <functional>
 #include <vector>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+} // namespace dealii
 
 namespace estep
 {
   /**
-   * What the hot loops of ElasticBody need about a mesh of linear (P1)
-   * tetrahedra, computed once from deal.II and stored as plain arrays
-   * (structure of arrays, one entry per cell).
+   * What ElasticBody needs about a mesh of linear (P1) tetrahedra, computed
+   * once from deal.II and stored as plain arrays (structure of arrays, one
+   * entry per cell): the body keeps no deal.II mesh, and in a run on several
+   * MPI ranks only the first builds one and sends the others these arrays.
    *
    * Points are the mesh vertices, numbered as the DoFHandler of
    * FESystem<3>(FE_SimplexP<3>(1), 3) numbers its vertex degrees of freedom:
@@ -58,7 +66,42 @@ namespace estep
 
     /** Lumped mass of each point (row sums of the consistent mass matrix). */
     std::vector<double> lumped_mass;
+
+    /** The boundary faces as triples of points, oriented so that (x_1 - x_0)
+     * x (x_2 - x_0) points out of the body, in the order of the cells and
+     * their faces. */
+    std::vector<std::array<unsigned int, 3>> boundary_triangle;
+
+    /** The boundary id of each of them. */
+    std::vector<unsigned int> boundary_id;
   };
+
+
+
+  /**
+   * The P1CellData of the tetrahedral mesh @p tria, of mass density
+   * @p density: the geometry from the vertices, the lumped mass from deal.II
+   * (FE_SimplexP, QGaussSimplex, MappingFE), checked against the geometry.
+   * Throws dealii::ExcMessage if the mesh has non-tetrahedral, inverted or
+   * degenerate cells, or a vertex in no cell.
+   */
+  P1CellData
+  make_p1_cell_data(const dealii::Triangulation<3, 3> &tria,
+                    const double                       density);
+
+
+
+  /**
+   * make_p1_cell_data() of the mesh that @p make_mesh builds, on every rank
+   * of a run on several MPI ranks (distributed_blocks.h) while only the first
+   * builds the mesh, the others receiving the arrays: so no other rank ever
+   * holds a deal.II mesh of the whole body. What the first rank throws,
+   * every rank throws, with the same message. Collective.
+   */
+  P1CellData
+  make_p1_cell_data_on_first_rank(
+    const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
+    const double                                              density);
 } // namespace estep
 
 #endif
