@@ -13,6 +13,9 @@ namespace estep
   {
     bool distributed = false;
 
+    /** MPI counts in ints: large messages go in pieces of this many bytes. */
+    constexpr std::size_t message_piece = std::size_t(1) << 30;
+
     MPI_Comm
     communicator()
     {
@@ -67,9 +70,11 @@ namespace estep
 
 
   BlockRange
-  rank_blocks(const unsigned int n_blocks, const unsigned int rank)
+  rank_blocks(const unsigned int n_blocks,
+              const unsigned int rank,
+              const unsigned int n_ranks)
   {
-    const unsigned long long n = n_blocks, ranks = rank_count();
+    const unsigned long long n = n_blocks, ranks = n_ranks;
     return {static_cast<unsigned int>(n * rank / ranks),
             static_cast<unsigned int>(n * (rank + 1) / ranks)};
   }
@@ -138,15 +143,66 @@ namespace estep
   {
     if (rank_count() == 1)
       return;
-    // In pieces that an int counts.
-    constexpr std::size_t piece = std::size_t(1) << 30;
-    for (std::size_t start = 0; start < size; start += piece)
+    for (std::size_t start = 0; start < size; start += message_piece)
       check(MPI_Bcast(static_cast<char *>(bytes) + start,
-                      static_cast<int>(std::min(piece, size - start)),
+                      static_cast<int>(std::min(message_piece, size - start)),
                       MPI_BYTE,
                       0,
                       communicator()),
             "MPI_Bcast");
+  }
+
+
+
+  void
+  send_bytes_from_first_rank(const unsigned int rank,
+                             const void        *bytes,
+                             const std::size_t  size)
+  {
+    for (std::size_t start = 0; start < size; start += message_piece)
+      check(MPI_Send(static_cast<const char *>(bytes) + start,
+                     static_cast<int>(std::min(message_piece, size - start)),
+                     MPI_BYTE,
+                     static_cast<int>(rank),
+                     0,
+                     communicator()),
+            "MPI_Send");
+  }
+
+
+
+  void
+  receive_bytes_from_first_rank(void *bytes, const std::size_t size)
+  {
+    for (std::size_t start = 0; start < size; start += message_piece)
+      check(MPI_Recv(static_cast<char *>(bytes) + start,
+                     static_cast<int>(std::min(message_piece, size - start)),
+                     MPI_BYTE,
+                     0,
+                     0,
+                     communicator(),
+                     MPI_STATUS_IGNORE),
+            "MPI_Recv");
+  }
+
+
+
+  void
+  smallest_over_ranks(std::vector<unsigned int> &values)
+  {
+    if (rank_count() == 1)
+      return;
+    for (std::size_t start = 0; start < values.size();
+         start += message_piece / sizeof(unsigned int))
+      check(MPI_Allreduce(MPI_IN_PLACE,
+                          values.data() + start,
+                          static_cast<int>(
+                            std::min(message_piece / sizeof(unsigned int),
+                                     values.size() - start)),
+                          MPI_UNSIGNED,
+                          MPI_MIN,
+                          communicator()),
+            "MPI_Allreduce");
   }
 
 

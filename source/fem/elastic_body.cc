@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <estep/base/distributed_blocks.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
 
@@ -32,7 +33,6 @@ namespace estep
     , body_material(std::move(material))
     , rho(density)
     , data(std::move(cell_data))
-    , total_volume(0.)
   {
     AssertThrow(body_material != nullptr,
                 dealii::ExcMessage("ElasticBody: no material given."));
@@ -40,19 +40,25 @@ namespace estep
                 dealii::ExcMessage(
                   "ElasticBody: the density must be positive (got " +
                   std::to_string(density) + ")."));
+    // The per-cell arrays must hold at least this rank's blocks (all cells
+    // on one rank).
     const unsigned int n_padded = data.n_padded_cells();
-    bool complete = data.n_cells > 0 && data.volume.size() == n_padded &&
-                    data.reference_position.size() == 3 * data.n_points &&
-                    data.lumped_mass.size() == data.n_points &&
-                    data.boundary_id.size() == data.boundary_triangle.size();
+    const unsigned int n_held   = data.volume.size();
+    const BlockRange   blocks   = rank_blocks(n_blocks(n_padded), this_rank());
+    bool               complete =
+      data.n_cells > 0 && data.held_begin % n_lanes == 0 &&
+      n_held % n_lanes == 0 && data.held_end() <= n_padded &&
+      data.held_begin <= blocks.begin * block_size &&
+      std::min(blocks.end * block_size, n_padded) <= data.held_end() &&
+      data.reference_position.size() == 3 * data.n_points &&
+      data.lumped_mass.size() == data.n_points &&
+      data.boundary_id.size() == data.boundary_triangle.size();
     for (const auto &v : data.point)
-      complete = complete && v.size() == n_padded;
+      complete = complete && v.size() == n_held;
     for (const auto &v : data.shape_gradient)
-      complete = complete && v.size() == n_padded;
+      complete = complete && v.size() == n_held;
     AssertThrow(complete,
                 dealii::ExcMessage("ElasticBody: incomplete cell data."));
-    for (unsigned int e = 0; e < data.n_cells; ++e)
-      total_volume += data.volume[e];
 
     inv_mass.reinit(3 * data.n_points);
     for (unsigned int i = 0; i < data.n_points; ++i)
@@ -114,7 +120,7 @@ namespace estep
           internal::deformation_gradient(x, data, e, F);
           internal::cofactor(F, C);
           store_lanes(J + e, internal::determinant(F, C));
-          square += load_lanes(data.volume.data() + e) *
+          square += load_lanes(data.volume.data() + data.at(e)) *
                     (internal::contract(F, F) - 3.);
         }
       return sum(square);
@@ -123,7 +129,7 @@ namespace estep
     /** The cells assemble_gradient() takes at a time, from a multiple of
      * it: where the chunks begin changes the bits of the material's batch
      * call (its vector and scalar parts). */
-    constexpr unsigned int gradient_chunk = 128; // a multiple of n_lanes
+    constexpr unsigned int gradient_chunk = P1CellData::gradient_chunk;
 
     /**
      * The nodal forces |Omega_e| P_e grad N_a of the cells of @p cells, with
@@ -160,7 +166,8 @@ namespace estep
           for (unsigned int b = 0; b < m / n_lanes; ++b)
             {
               const unsigned int e = begin + n_lanes * b;
-              const Lanes        w = load_lanes(data.volume.data() + e);
+              const unsigned int i = data.at(e);
+              const Lanes        w = load_lanes(data.volume.data() + i);
               const Lanes dfv = load_lanes(df + n_lanes * b) * w, cv = c * w;
               Lanes       P[9];
               for (unsigned int l = 0; l < 9; ++l)
@@ -175,7 +182,7 @@ namespace estep
                   Lanes B[3];
                   for (unsigned int j = 0; j < 3; ++j)
                     B[j] =
-                      load_lanes(data.shape_gradient[3 * a + j].data() + e);
+                      load_lanes(data.shape_gradient[3 * a + j].data() + i);
                   for (unsigned int i = 0; i < 3; ++i)
                     {
                       force[a + 1][i] = P[3 * i] * B[0] + P[3 * i + 1] * B[1] +
@@ -186,7 +193,7 @@ namespace estep
               // Added cell by cell (the cells of a batch may share
               // vertices).
               for (unsigned int a = 0; a < 4; ++a)
-                add_triples(y, data.point[a].data() + e, force[a]);
+                add_triples(y, data.point[a].data() + i, force[a]);
             }
         }
     }
@@ -219,7 +226,7 @@ namespace estep
                                                        scratch_J.data());
         return Terms{body_material->sum_volumetric_energy(
                        scratch_J.data() + cells.begin,
-                       data.volume.data() + cells.begin,
+                       data.volume.data() + data.at(cells.begin),
                        std::min(cells.end, data.n_cells) - cells.begin),
                      square};
       });
@@ -229,7 +236,7 @@ namespace estep
     // state gives 0 up to round-off of the cells, not of the totals.
     return terms.volumetric +
            0.5 * body_material->quadratic_modulus() * terms.square -
-           body_material->volumetric_energy(1.) * total_volume;
+           body_material->volumetric_energy(1.) * data.total_volume;
   }
 
   void
@@ -299,12 +306,16 @@ namespace estep
     for (unsigned int b = mine.begin; b < mine.end; ++b)
       block_part[b] = static_cast<unsigned long long>(b - mine.begin) *
                       n_parts / (mine.end - mine.begin);
-    // Each point's owner: that of the block of its first cell.
+    // Each point's owner: that of the block of its first cell, the first
+    // over the ranks' cells (each holds at least its blocks').
     std::vector<unsigned int> first_cell(data.n_points, n_padded);
-    for (unsigned int e = 0; e < n_padded; ++e)
+    for (unsigned int e = data.held_begin; e < data.held_end(); ++e)
       for (unsigned int a = 0; a < 4; ++a)
-        first_cell[data.point[a][e]] =
-          std::min(first_cell[data.point[a][e]], e);
+        {
+          const unsigned int p = data.point[a][data.at(e)];
+          first_cell[p]        = std::min(first_cell[p], e);
+        }
+    smallest_over_ranks(first_cell);
     std::vector<unsigned int> point_rank(data.n_points),
       point_part(data.n_points);
     for (unsigned int p = 0; p < data.n_points; ++p)
@@ -333,26 +344,33 @@ namespace estep
       in_order = in_order && points[k] == k;
 
     // The chunks of cells with a vertex among a part's points, in runs of at
-    // most block_size cells, and the range of the points they touch.
+    // most block_size cells, and the range of the points they touch. All of
+    // them lie among the cells this rank holds (cells_held_by_ranks()).
     for (unsigned int j = 0; j < n_parts; ++j)
       {
         Part &part  = parts[j];
         part.lowest = data.n_points;
-        for (unsigned int chunk = 0; chunk < n_padded; chunk += gradient_chunk)
+        for (unsigned int chunk = data.held_begin; chunk < data.held_end();
+             chunk += gradient_chunk)
           {
-            const unsigned int end = std::min(chunk + gradient_chunk, n_padded);
-            bool               needed = false;
+            const unsigned int end =
+              std::min(chunk + gradient_chunk, data.held_end());
+            bool needed = false;
             for (unsigned int e = chunk; e < end && !needed; ++e)
               for (unsigned int a = 0; a < 4; ++a)
-                needed = needed || (point_rank[data.point[a][e]] == me &&
-                                    point_part[data.point[a][e]] == j);
+                {
+                  const unsigned int p = data.point[a][data.at(e)];
+                  needed =
+                    needed || (point_rank[p] == me && point_part[p] == j);
+                }
             if (!needed)
               continue;
             for (unsigned int e = chunk; e < end; ++e)
               for (unsigned int a = 0; a < 4; ++a)
                 {
-                  part.lowest  = std::min(part.lowest, data.point[a][e]);
-                  part.highest = std::max(part.highest, data.point[a][e]);
+                  const unsigned int p = data.point[a][data.at(e)];
+                  part.lowest          = std::min(part.lowest, p);
+                  part.highest         = std::max(part.highest, p);
                 }
             if (!part.cells.empty() && part.cells.back().end == chunk &&
                 part.cells.back().end - part.cells.back().begin < block_size)
@@ -390,7 +408,7 @@ namespace estep
   double
   ElasticBody::volume() const
   {
-    return total_volume;
+    return data.total_volume;
   }
 
   double
@@ -474,6 +492,16 @@ namespace estep
   ElasticBody::cell_data() const
   {
     return data;
+  }
+
+  const P1CellData &
+  ElasticBody::every_cell_data() const
+  {
+    if (data.held_begin == 0 && data.held_end() == data.n_padded_cells())
+      return data;
+    if (gathered_cells == nullptr)
+      gathered_cells = std::make_unique<P1CellData>(gather_every_cell(data));
+    return *gathered_cells;
   }
 
 } // namespace estep

@@ -215,7 +215,7 @@ namespace estep
           store_lanes(c1 + e, internal::contract(CF, G));
           store_lanes(c2 + e, internal::contract(CG, F));
           store_lanes(c3 + e, internal::determinant(G, CG));
-          const Lanes w = load_lanes(d.volume.data() + e);
+          const Lanes w = load_lanes(d.volume.data() + d.at(e));
           FF += w * (internal::contract(F, F) - 3.);
           FG += w * internal::contract(F, G);
           GG += w * internal::contract(G, G);
@@ -309,11 +309,12 @@ namespace estep
     const unsigned int n_padded = body.cell_data().n_padded_cells();
     return sum_over_distributed_blocks<LineValue>(
       n_blocks(n_cells), [&](const unsigned int b) {
-        const BlockRange   cells = block_range(b, n_cells);
-        const unsigned int count = cells.end - cells.begin;
-        double            *J     = scratch + cells.begin;
-        double            *dJ    = slope ? J + n_padded : nullptr;
-        const double *volume     = body.cell_data().volume.data() + cells.begin;
+        const BlockRange   cells  = block_range(b, n_cells);
+        const unsigned int count  = cells.end - cells.begin;
+        double            *J      = scratch + cells.begin;
+        double            *dJ     = slope ? J + n_padded : nullptr;
+        const P1CellData  &data   = body.cell_data();
+        const double      *volume = data.volume.data() + data.at(cells.begin);
         evaluate_cubics(s,
                         c0 + cells.begin,
                         c1 + cells.begin,
@@ -488,7 +489,8 @@ namespace estep
           {
             const unsigned int count =
               std::min(JacobianRanges::size, cells.end - begin);
-            const double *volume = body.cell_data().volume.data() + begin;
+            const P1CellData &data   = body.cell_data();
+            const double     *volume = data.volume.data() + data.at(begin);
             enclose_cubics(m,
                            r,
                            c0 + begin,
@@ -588,7 +590,7 @@ namespace estep
               ranges.J_hi,
               ranges.dJ_lo,
               ranges.dJ_hi,
-              body.cell_data().volume.data() + begin,
+              body.cell_data().volume.data() + body.cell_data().at(begin),
               count);
             block_sum.value += chunk.value;
             block_sum.derivative += chunk.derivative;

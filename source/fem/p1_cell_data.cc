@@ -7,16 +7,12 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/grid/tria.h>
 
-#include <estep/base/distributed_blocks.h>
-#include <estep/base/exception_text.h>
 #include <estep/contact/predicates.h>
 #include <estep/fem/meshes.h>
 #include <estep/fem/p1_cell_data.h>
 
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 namespace estep
@@ -26,9 +22,9 @@ namespace estep
     /** The boundary faces of @p tria into @p data, in point numbers through
      * @p point_of_vertex, each oriented by its cell's fourth vertex. */
     void
-    add_boundary_faces(const dealii::Triangulation<3, 3>  &tria,
-                       const std::vector<unsigned int>    &point_of_vertex,
-                       P1CellData                         &data)
+    add_boundary_faces(const dealii::Triangulation<3, 3> &tria,
+                       const std::vector<unsigned int>   &point_of_vertex,
+                       P1CellData                        &data)
     {
       const auto point = [&](const unsigned int vertex) {
         const dealii::Point<3> &p = tria.get_vertices()[vertex];
@@ -110,7 +106,7 @@ namespace estep
                             dealii::ExcInternalError());
                 data.reference_position[3 * p + c] = cell->vertex(a)[c];
               }
-            data.point[a][e]                        = p;
+            data.point[a][e]                       = p;
             point_of_vertex[cell->vertex_index(a)] = p;
           }
         dealii::Tensor<2, 3> Dm;
@@ -123,6 +119,7 @@ namespace estep
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int j = 0; j < 3; ++j)
             data.shape_gradient[3 * a + j][e] = B[a][j];
+        data.total_volume += data.volume[e];
       }
     // The padding of the last batch of four cells: copies of the last cell
     // with volume 0.
@@ -189,57 +186,6 @@ namespace estep
       }
 
     add_boundary_faces(tria, point_of_vertex, data);
-    return data;
-  }
-
-
-
-  P1CellData
-  make_p1_cell_data_on_first_rank(
-    const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
-    const double                                              density)
-  {
-    const auto make = [&]() {
-      dealii::Triangulation<3, 3> tria;
-      make_mesh(tria);
-      return make_p1_cell_data(tria, density);
-    };
-    if (rank_count() == 1)
-      return make();
-
-    P1CellData         data;
-    std::exception_ptr failure;
-    std::vector<char>  message;
-    if (this_rank() == 0)
-      try
-        {
-          data = make();
-        }
-      catch (const std::exception &e)
-        {
-          failure                 = std::current_exception();
-          const std::string text  = one_line_message(e);
-          message.assign(text.begin(), text.end());
-        }
-    broadcast_from_first_rank(message);
-    if (failure)
-      std::rethrow_exception(failure);
-    if (!message.empty())
-      throw std::runtime_error(std::string(message.begin(), message.end()));
-
-    unsigned int sizes[2] = {data.n_cells, data.n_points};
-    broadcast_from_first_rank(sizes, sizeof(sizes));
-    data.n_cells  = sizes[0];
-    data.n_points = sizes[1];
-    for (auto &v : data.point)
-      broadcast_from_first_rank(v);
-    for (auto &v : data.shape_gradient)
-      broadcast_from_first_rank(v);
-    broadcast_from_first_rank(data.volume);
-    broadcast_from_first_rank(data.reference_position);
-    broadcast_from_first_rank(data.lumped_mass);
-    broadcast_from_first_rank(data.boundary_triangle);
-    broadcast_from_first_rank(data.boundary_id);
     return data;
   }
 } // namespace estep

@@ -23,11 +23,12 @@ namespace estep
                          const unsigned int e,
                          double            *F)
     {
-      const unsigned int p0 = 3 * d.point[0][e], p1 = 3 * d.point[1][e],
-                         p2 = 3 * d.point[2][e], p3 = 3 * d.point[3][e];
+      const unsigned int i  = d.at(e);
+      const unsigned int p0 = 3 * d.point[0][i], p1 = 3 * d.point[1][i],
+                         p2 = 3 * d.point[2][i], p3 = 3 * d.point[3][i];
       double B[9];
       for (unsigned int k = 0; k < 9; ++k)
-        B[k] = d.shape_gradient[k][e];
+        B[k] = d.shape_gradient[k][i];
       for (unsigned int i = 0; i < 3; ++i)
         {
           const double x0 = x[p0 + i];
@@ -49,14 +50,15 @@ namespace estep
                          const unsigned int e,
                          Lanes             *F)
     {
-      Lanes B[9];
+      const unsigned int i = d.at(e);
+      Lanes              B[9];
       for (unsigned int k = 0; k < 9; ++k)
-        B[k] = load_lanes(d.shape_gradient[k].data() + e);
+        B[k] = load_lanes(d.shape_gradient[k].data() + i);
       Lanes x0[3], x1[3], x2[3], x3[3];
-      load_triples(x, d.point[0].data() + e, x0);
-      load_triples(x, d.point[1].data() + e, x1);
-      load_triples(x, d.point[2].data() + e, x2);
-      load_triples(x, d.point[3].data() + e, x3);
+      load_triples(x, d.point[0].data() + i, x0);
+      load_triples(x, d.point[1].data() + i, x1);
+      load_triples(x, d.point[2].data() + i, x2);
+      load_triples(x, d.point[3].data() + i, x3);
       for (unsigned int i = 0; i < 3; ++i)
         {
           const Lanes d1 = x1[i] - x0[i], d2 = x2[i] - x0[i],

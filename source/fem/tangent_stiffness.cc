@@ -37,7 +37,7 @@ namespace estep
 
 
   TangentStiffness::TangentStiffness(const ElasticBody &body)
-    : TangentStiffness(body.cell_data(), body.material())
+    : TangentStiffness(body.every_cell_data(), body.material())
   {}
 
 

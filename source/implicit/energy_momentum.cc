@@ -213,7 +213,7 @@ namespace estep
                                     Vector       &f) const
   {
     const ElasticBody &body     = implementation->body;
-    const P1CellData  &data     = body.cell_data();
+    const P1CellData  &data     = body.every_cell_data();
     const Material    &material = body.material();
     const double       c        = material.quadratic_modulus();
     f.reinit(q0.size());

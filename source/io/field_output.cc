@@ -79,7 +79,7 @@ namespace estep
           std::vector<unsigned int> local(cells.n_points, unused);
           for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
             for (unsigned int a = 0; a < 4; ++a)
-              local[cells.point[a][e]] = 0;
+              local[cells.point[a][cells.at(e)]] = 0;
           std::vector<double> xyz;
           for (unsigned int p = 0; p < cells.n_points; ++p)
             if (local[p] != unused)
@@ -92,7 +92,7 @@ namespace estep
           std::vector<unsigned int> tetrahedra;
           for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
             for (unsigned int a = 0; a < 4; ++a)
-              tetrahedra.push_back(local[cells.point[a][e]]);
+              tetrahedra.push_back(local[cells.point[a][cells.at(e)]]);
           vtu.push_back(std::make_unique<VtuFile>(xyz, tetrahedra));
           pieces.push_back(std::move(piece));
         }
@@ -523,6 +523,13 @@ namespace estep
           "system <" +
           system.name() + "> has " + std::to_string(bodies->n_bodies()) +
           "; choose vtu.");
+      if (format == "hdf5" && rank_count() > 1)
+        throw std::runtime_error(
+          "Postprocessors/Field output/Format: hdf5 writes the whole body "
+          "from one process, and each of the " +
+          std::to_string(rank_count()) +
+          " processes holds only its cells; choose vtu (a piece per "
+          "process).");
       if (!(interval > 0.))
         throw std::runtime_error(
           "Postprocessors/Field output/Interval: must be positive.");

@@ -6,6 +6,7 @@
 #include <estep/base/exception_text.h>
 #include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>

@@ -13,6 +13,7 @@
 #include <estep/composite/scene.h>
 #include <estep/composite/static_surface.h>
 #include <estep/composite/supported_system.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/tangent_stiffness.h>

@@ -39,10 +39,12 @@ namespace estep
   unsigned int
   this_rank();
 
-  /** The blocks [begin, end) of @p n_blocks that @p rank computes: balanced
-   * contiguous ranges, in rank order. */
+  /** The blocks [begin, end) of @p n_blocks that @p rank of @p n_ranks
+   * computes: balanced contiguous ranges, in rank order. */
   BlockRange
-  rank_blocks(const unsigned int n_blocks, const unsigned int rank);
+  rank_blocks(const unsigned int n_blocks,
+              const unsigned int rank,
+              const unsigned int n_ranks = rank_count());
 
   /**
    * @p items holds @p n_blocks items of @p item_bytes bytes each, of which
@@ -85,6 +87,46 @@ namespace estep
     vector.resize(size);
     broadcast_from_first_rank(vector.data(), size * sizeof(T));
   }
+
+  /** Send @p size bytes at @p bytes from the first rank to rank @p rank,
+   * which takes them with receive_bytes_from_first_rank(). */
+  void
+  send_bytes_from_first_rank(const unsigned int rank,
+                             const void        *bytes,
+                             const std::size_t  size);
+
+  /** Take @p size bytes into @p bytes that the first rank sends this rank
+   * with send_bytes_from_first_rank(). */
+  void
+  receive_bytes_from_first_rank(void *bytes, const std::size_t size);
+
+  /** The @p n values at @p values, from the first rank to rank @p rank, which
+   * takes them with receive_from_first_rank(std::vector<T> &). */
+  template <typename T>
+  void
+  send_from_first_rank(const unsigned int rank, const T *values, std::size_t n)
+  {
+    static_assert(std::is_trivially_copyable_v<T>,
+                  "values are sent between ranks as bytes");
+    send_bytes_from_first_rank(rank, &n, sizeof(n));
+    send_bytes_from_first_rank(rank, values, n * sizeof(T));
+  }
+
+  /** @p vector, resized, as the first rank sends it to this rank. */
+  template <typename T>
+  void
+  receive_from_first_rank(std::vector<T> &vector)
+  {
+    std::size_t n = 0;
+    receive_bytes_from_first_rank(&n, sizeof(n));
+    vector.resize(n);
+    receive_bytes_from_first_rank(vector.data(), n * sizeof(T));
+  }
+
+  /** Each entry of @p values, on every rank, the smallest of the ranks'.
+   * Collective: every rank must call it with the same size. */
+  void
+  smallest_over_ranks(std::vector<unsigned int> &values);
 
   /** The largest of the ranks' @p value. Collective. */
   int

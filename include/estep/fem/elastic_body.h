@@ -153,9 +153,20 @@ namespace estep
     const Material &
     material() const;
 
-    /** The precomputed per-cell data of the hot loops. */
+    /** The precomputed per-cell data of the hot loops: of every cell, but
+     * in a run on several MPI ranks of the cells this rank computes (see
+     * P1CellData::held_begin). */
     const P1CellData &
     cell_data() const;
+
+    /**
+     * The data of every cell: cell_data() if it holds them all, else (on
+     * several MPI ranks) gathered from the ranks on the first call, which is
+     * then collective. For what needs every cell on every rank: the Hessian
+     * of the implicit methods.
+     */
+    const P1CellData &
+    every_cell_data() const;
 
     /** @name One body seen as ElasticBodies (for field output). @{ */
     unsigned int
@@ -216,7 +227,6 @@ namespace estep
     std::shared_ptr<const Material> body_material;
     double                          rho;
     P1CellData                      data;
-    double                          total_volume;
     Vector                          inv_mass;
     /** Scratch of energy(): J per cell. */
     mutable std::vector<double> scratch_J;
@@ -267,6 +277,8 @@ namespace estep
      * used); this rank's points' gradient, where not in place. */
     mutable std::vector<std::vector<double>> part_forces;
     mutable std::vector<double>              scratch_mine, scratch_all;
+    /** every_cell_data() where cell_data() does not hold every cell. */
+    mutable std::unique_ptr<P1CellData> gathered_cells;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };

@@ -2,7 +2,6 @@
 #define estep_fem_p1_cell_data_h
 
 #include <array>
-#include <functional>
 #include <vector>
 
 namespace dealii
@@ -16,8 +15,7 @@ namespace estep
   /**
    * What ElasticBody needs about a mesh of linear (P1) tetrahedra, computed
    * once from deal.II and stored as plain arrays (structure of arrays, one
-   * entry per cell): the body keeps no deal.II mesh, and in a run on several
-   * MPI ranks only the first builds one and sends the others these arrays.
+   * entry per cell): the body keeps no deal.II mesh.
    *
    * Points are the mesh vertices, numbered as the DoFHandler of
    * FESystem<3>(FE_SimplexP<3>(1), 3) numbers its vertex degrees of freedom:
@@ -31,35 +29,63 @@ namespace estep
    * function of vertex a + 1, and dN_0/dX = -sum of the rows. The deformation
    * gradient of positions x is F = [x_1 - x_0 | x_2 - x_0 | x_3 - x_0] B.
    *
-   * The per-cell arrays are padded to a whole number of batches of four cells
-   * (n_padded_cells() entries; see Lanes): the padding repeats the last cell
-   * with volume 0, so that it adds nothing to sums over cells.
+   * The cells are padded to a whole number of batches of four
+   * (n_padded_cells(); see Lanes): the padding repeats the last cell with
+   * volume 0, so that it adds nothing to sums over cells. The per-cell arrays
+   * hold the cells [held_begin, held_end()) of these, entry at(e) for cell
+   * e: all of them, but on each of several MPI ranks only those it computes
+   * (distributed_cell_data.h).
    */
   struct P1CellData
   {
+    /** ElasticBody's gradient adds the cells' forces in chunks of this many
+     * cells (a multiple of 4), whose alignment changes the bits of the
+     * material's batch call. */
+    static constexpr unsigned int gradient_chunk = 128;
+
     /** Number of cells (tetrahedra). */
     unsigned int n_cells = 0;
 
-    /** The length of the per-cell arrays: n_cells rounded up to a multiple
-     * of 4. */
+    /** n_cells rounded up to a multiple of 4. */
     unsigned int
     n_padded_cells() const
     {
       return (n_cells + 3) / 4 * 4;
     }
 
+    /** The first cell the per-cell arrays hold (a multiple of 4). */
+    unsigned int held_begin = 0;
+
+    /** One past the last cell they hold. */
+    unsigned int
+    held_end() const
+    {
+      return held_begin + static_cast<unsigned int>(volume.size());
+    }
+
+    /** Where cell @p e is in the per-cell arrays. */
+    unsigned int
+    at(const unsigned int e) const
+    {
+      return e - held_begin;
+    }
+
     /** Number of points (vertices). */
     unsigned int n_points = 0;
 
-    /** point[a][e]: point index of vertex a of cell e. */
+    /** point[a][at(e)]: point index of vertex a of cell e. */
     std::array<std::vector<unsigned int>, 4> point;
 
-    /** shape_gradient[3 a + j][e] = B_aj = dN_{a+1}/dX_j on cell e (units
+    /** shape_gradient[3 a + j][at(e)] = B_aj = dN_{a+1}/dX_j on cell e (units
      * 1/length). */
     std::array<std::vector<double>, 9> shape_gradient;
 
-    /** Reference volume of each cell (positive). */
+    /** Reference volume of each cell (positive), at at(e). */
     std::vector<double> volume;
+
+    /** The volume of the body: the sum of all cells' volumes, in cell order.
+     */
+    double total_volume = 0.;
 
     /** Reference positions, point-major: X[3 i + c]. */
     std::vector<double> reference_position;
@@ -88,20 +114,6 @@ namespace estep
   P1CellData
   make_p1_cell_data(const dealii::Triangulation<3, 3> &tria,
                     const double                       density);
-
-
-
-  /**
-   * make_p1_cell_data() of the mesh that @p make_mesh builds, on every rank
-   * of a run on several MPI ranks (distributed_blocks.h) while only the first
-   * builds the mesh, the others receiving the arrays: so no other rank ever
-   * holds a deal.II mesh of the whole body. What the first rank throws,
-   * every rank throws, with the same message. Collective.
-   */
-  P1CellData
-  make_p1_cell_data_on_first_rank(
-    const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
-    const double                                              density);
 } // namespace estep
 
 #endif

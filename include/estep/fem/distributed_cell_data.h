@@ -1,0 +1,54 @@
+#ifndef estep_fem_distributed_cell_data_h
+#define estep_fem_distributed_cell_data_h
+
+#include <estep/base/parallel_blocks.h>
+#include <estep/fem/p1_cell_data.h>
+
+#include <functional>
+#include <vector>
+
+/**
+ * @file
+ * The P1CellData of a body in a run on several MPI ranks
+ * (distributed_blocks.h): the first rank alone builds the mesh and the
+ * arrays; every rank receives the per-point arrays and the boundary whole,
+ * and of the per-cell arrays only the cells it computes.
+ */
+
+namespace estep
+{
+  /**
+   * The cells each of @p n_ranks ranks holds, from @p data holding every
+   * cell: rank r holds the cells of its blocks (rank_blocks()) and, after them, every
+   * cell that touches a point whose first cell lies in its blocks, to the end
+   * of that cell's gradient chunk (ElasticBody's gradient computes these
+   * points' forces from all their cells, chunk by chunk). An empty range for
+   * a rank without blocks.
+   */
+  std::vector<BlockRange>
+  cells_held_by_ranks(const P1CellData &data, const unsigned int n_ranks);
+
+  /**
+   * make_p1_cell_data() of the mesh that @p make_mesh builds, of which every
+   * rank receives its part: only the first rank builds the mesh and the
+   * arrays, and sends each rank the per-point arrays and the boundary, and
+   * the per-cell arrays of the cells cells_held_by_ranks() gives it. So no
+   * other rank ever holds a deal.II mesh of the whole body or every cell's
+   * data. What the first rank throws, every rank throws, with the same
+   * message. On one rank, simply make_p1_cell_data(). Collective.
+   */
+  P1CellData
+  make_p1_cell_data_on_first_rank(
+    const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
+    const double                                              density);
+
+  /**
+   * The P1CellData of every cell, on every rank, from the ranks' parts
+   * @p data (each sends the cells of its blocks). A copy of @p data if it
+   * holds every cell. Collective when it does not.
+   */
+  P1CellData
+  gather_every_cell(const P1CellData &data);
+} // namespace estep
+
+#endif

@@ -1,0 +1,182 @@
+#include <deal.II/grid/tria.h>
+
+#include <estep/base/distributed_blocks.h>
+#include <estep/base/exception_text.h>
+#include <estep/fem/distributed_cell_data.h>
+
+#include <algorithm>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace estep
+{
+  namespace
+  {
+    /** Apply @p f to each per-cell array of @p data. */
+    template <typename Data, typename F>
+    void
+    for_each_cell_array(Data &data, const F &f)
+    {
+      for (auto &v : data.point)
+        f(v);
+      for (auto &v : data.shape_gradient)
+        f(v);
+      f(data.volume);
+    }
+  } // namespace
+
+
+
+  std::vector<BlockRange>
+  cells_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
+  {
+    Assert(data.held_begin == 0 && data.held_end() == data.n_padded_cells(),
+           dealii::ExcInternalError());
+    const unsigned int n_padded = data.n_padded_cells();
+    const unsigned int n_cell_blocks = n_blocks(n_padded);
+    std::vector<BlockRange>   held(n_ranks);
+    std::vector<unsigned int> block_rank(n_cell_blocks);
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      {
+        const BlockRange blocks = rank_blocks(n_cell_blocks, r, n_ranks);
+        std::fill(block_rank.begin() + blocks.begin,
+                  block_rank.begin() + blocks.end,
+                  r);
+        held[r].begin = std::min(blocks.begin * block_size, n_padded);
+        held[r].end   = std::min(blocks.end * block_size, n_padded);
+      }
+    std::vector<unsigned int> first_cell(data.n_points, n_padded);
+    for (unsigned int e = 0; e < n_padded; ++e)
+      for (unsigned int a = 0; a < 4; ++a)
+        first_cell[data.point[a][e]] =
+          std::min(first_cell[data.point[a][e]], e);
+    constexpr unsigned int chunk = P1CellData::gradient_chunk;
+    for (unsigned int e = 0; e < n_padded; ++e)
+      {
+        const unsigned int chunk_end = std::min((e / chunk + 1) * chunk,
+                                                n_padded);
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            BlockRange &range =
+              held[block_rank[first_cell[data.point[a][e]] / block_size]];
+            range.end = std::max(range.end, chunk_end);
+          }
+      }
+    return held;
+  }
+
+
+
+  P1CellData
+  make_p1_cell_data_on_first_rank(
+    const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
+    const double                                              density)
+  {
+    const auto make = [&]() {
+      dealii::Triangulation<3, 3> tria;
+      make_mesh(tria);
+      return make_p1_cell_data(tria, density);
+    };
+    if (rank_count() == 1)
+      return make();
+
+    P1CellData         data;
+    std::exception_ptr failure;
+    std::vector<char>  message;
+    if (this_rank() == 0)
+      try
+        {
+          data = make();
+        }
+      catch (const std::exception &e)
+        {
+          failure                = std::current_exception();
+          const std::string text = one_line_message(e);
+          message.assign(text.begin(), text.end());
+        }
+    broadcast_from_first_rank(message);
+    if (failure)
+      std::rethrow_exception(failure);
+    if (!message.empty())
+      throw std::runtime_error(std::string(message.begin(), message.end()));
+
+    // The whole body's numbers, the points and the boundary: to every rank.
+    unsigned int sizes[2] = {data.n_cells, data.n_points};
+    broadcast_from_first_rank(sizes, sizeof(sizes));
+    data.n_cells  = sizes[0];
+    data.n_points = sizes[1];
+    broadcast_from_first_rank(&data.total_volume, sizeof(data.total_volume));
+    broadcast_from_first_rank(data.reference_position);
+    broadcast_from_first_rank(data.lumped_mass);
+    broadcast_from_first_rank(data.boundary_triangle);
+    broadcast_from_first_rank(data.boundary_id);
+
+    // The cells: to each rank those it holds, one rank after the other.
+    if (this_rank() == 0)
+      {
+        const std::vector<BlockRange> held =
+          cells_held_by_ranks(data, rank_count());
+        for (unsigned int r = 1; r < held.size(); ++r)
+          {
+            send_bytes_from_first_rank(r,
+                                       &held[r].begin,
+                                       sizeof(unsigned int));
+            for_each_cell_array(data, [&](const auto &v) {
+              send_from_first_rank(r,
+                                   v.data() + held[r].begin,
+                                   held[r].end - held[r].begin);
+            });
+          }
+        for_each_cell_array(data, [&](auto &v) {
+          std::decay_t<decltype(v)>(v.begin() + held[0].begin,
+                                    v.begin() + held[0].end)
+            .swap(v);
+        });
+        data.held_begin = held[0].begin;
+      }
+    else
+      {
+        receive_bytes_from_first_rank(&data.held_begin, sizeof(unsigned int));
+        for_each_cell_array(data,
+                            [](auto &v) { receive_from_first_rank(v); });
+      }
+    return data;
+  }
+
+
+
+  P1CellData
+  gather_every_cell(const P1CellData &data)
+  {
+    const unsigned int n_padded = data.n_padded_cells();
+    if (data.held_begin == 0 && data.held_end() == n_padded)
+      return data;
+    P1CellData every = data;
+    every.held_begin = 0;
+    // Each rank's blocks, in whole blocks of block_size cells (the last one
+    // cut to n_padded after the exchange).
+    const unsigned int n_cell_blocks = n_blocks(n_padded);
+    const BlockRange   mine          = rank_blocks(n_cell_blocks, this_rank());
+    const unsigned int begin = std::min(mine.begin * block_size, n_padded),
+                       end   = std::min(mine.end * block_size, n_padded);
+    Assert(data.held_begin <= begin && end <= data.held_end(),
+           dealii::ExcInternalError());
+    const auto gather = [&](const auto &held, auto &whole) {
+      using T = typename std::decay_t<decltype(held)>::value_type;
+      whole.assign(std::size_t(n_cell_blocks) * block_size, T());
+      std::copy(held.begin() + data.at(begin),
+                held.begin() + data.at(end),
+                whole.begin() + begin);
+      share_block_items(whole.data(), block_size * sizeof(T), n_cell_blocks);
+      whole.resize(n_padded);
+    };
+    for (unsigned int a = 0; a < 4; ++a)
+      gather(data.point[a], every.point[a]);
+    for (unsigned int k = 0; k < 9; ++k)
+      gather(data.shape_gradient[k], every.shape_gradient[k]);
+    gather(data.volume, every.volume);
+    return every;
+  }
+} // namespace estep
