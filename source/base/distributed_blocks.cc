@@ -81,6 +81,18 @@ namespace estep
 
 
 
+  BlockRange
+  rank_cells(const unsigned int n_cells,
+             const unsigned int rank,
+             const unsigned int n_ranks)
+  {
+    const BlockRange blocks = rank_blocks(n_blocks(n_cells), rank, n_ranks);
+    return {std::min(blocks.begin * block_size, n_cells),
+            std::min(blocks.end * block_size, n_cells)};
+  }
+
+
+
   void
   share_block_items(void              *items,
                     const std::size_t  item_bytes,
@@ -183,26 +195,6 @@ namespace estep
                      communicator(),
                      MPI_STATUS_IGNORE),
             "MPI_Recv");
-  }
-
-
-
-  void
-  smallest_over_ranks(std::vector<unsigned int> &values)
-  {
-    if (rank_count() == 1)
-      return;
-    for (std::size_t start = 0; start < values.size();
-         start += message_piece / sizeof(unsigned int))
-      check(MPI_Allreduce(MPI_IN_PLACE,
-                          values.data() + start,
-                          static_cast<int>(
-                            std::min(message_piece / sizeof(unsigned int),
-                                     values.size() - start)),
-                          MPI_UNSIGNED,
-                          MPI_MIN,
-                          communicator()),
-            "MPI_Allreduce");
   }
 
 

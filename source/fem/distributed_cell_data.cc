@@ -12,55 +12,32 @@
 
 namespace estep
 {
-  namespace
-  {
-    /** Apply @p f to each per-cell array of @p data. */
-    template <typename Data, typename F>
-    void
-    for_each_cell_array(Data &data, const F &f)
-    {
-      for (auto &v : data.point)
-        f(v);
-      for (auto &v : data.shape_gradient)
-        f(v);
-      f(data.volume);
-    }
-  } // namespace
-
-
-
   std::vector<BlockRange>
   cells_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
   {
     Assert(data.held_begin == 0 && data.held_end() == data.n_padded_cells(),
            dealii::ExcInternalError());
-    const unsigned int n_padded = data.n_padded_cells();
-    const unsigned int n_cell_blocks = n_blocks(n_padded);
-    std::vector<BlockRange>   held(n_ranks);
-    std::vector<unsigned int> block_rank(n_cell_blocks);
+    const unsigned int      n_padded = data.n_padded_cells();
+    std::vector<BlockRange> held(n_ranks);
+    // The rank of each block.
+    std::vector<unsigned int> block_rank(n_blocks(n_padded));
     for (unsigned int r = 0; r < n_ranks; ++r)
       {
-        const BlockRange blocks = rank_blocks(n_cell_blocks, r, n_ranks);
+        held[r]                 = rank_cells(n_padded, r, n_ranks);
+        const BlockRange blocks = rank_blocks(block_rank.size(), r, n_ranks);
         std::fill(block_rank.begin() + blocks.begin,
                   block_rank.begin() + blocks.end,
                   r);
-        held[r].begin = std::min(blocks.begin * block_size, n_padded);
-        held[r].end   = std::min(blocks.end * block_size, n_padded);
       }
-    std::vector<unsigned int> first_cell(data.n_points, n_padded);
-    for (unsigned int e = 0; e < n_padded; ++e)
-      for (unsigned int a = 0; a < 4; ++a)
-        first_cell[data.point[a][e]] =
-          std::min(first_cell[data.point[a][e]], e);
     constexpr unsigned int chunk = P1CellData::gradient_chunk;
     for (unsigned int e = 0; e < n_padded; ++e)
       {
-        const unsigned int chunk_end = std::min((e / chunk + 1) * chunk,
-                                                n_padded);
+        const unsigned int chunk_end =
+          std::min((e / chunk + 1) * chunk, n_padded);
         for (unsigned int a = 0; a < 4; ++a)
           {
             BlockRange &range =
-              held[block_rank[first_cell[data.point[a][e]] / block_size]];
+              held[block_rank[data.first_cell[data.point[a][e]] / block_size]];
             range.end = std::max(range.end, chunk_end);
           }
       }
@@ -82,25 +59,36 @@ namespace estep
     if (rank_count() == 1)
       return make();
 
+    // What the first rank meets, every rank throws.
     P1CellData         data;
     std::exception_ptr failure;
     std::vector<char>  message;
     if (this_rank() == 0)
-      try
-        {
-          data = make();
-        }
-      catch (const std::exception &e)
-        {
-          failure                = std::current_exception();
-          const std::string text = one_line_message(e);
-          message.assign(text.begin(), text.end());
-        }
+      {
+        try
+          {
+            data = make();
+          }
+        catch (const std::exception &e)
+          {
+            failure                = std::current_exception();
+            const std::string text = one_line_message(e);
+            message.assign(text.begin(), text.end());
+          }
+        catch (...)
+          {
+            failure = std::current_exception();
+          }
+      }
+    int failed = failure != nullptr;
+    broadcast_from_first_rank(&failed, sizeof(failed));
     broadcast_from_first_rank(message);
     if (failure)
       std::rethrow_exception(failure);
-    if (!message.empty())
-      throw std::runtime_error(std::string(message.begin(), message.end()));
+    if (failed)
+      throw std::runtime_error(message.empty() ?
+                                 "the first process could not make the mesh" :
+                                 std::string(message.begin(), message.end()));
 
     // The whole body's numbers, the points and the boundary: to every rank.
     unsigned int sizes[2] = {data.n_cells, data.n_points};
@@ -108,8 +96,10 @@ namespace estep
     data.n_cells  = sizes[0];
     data.n_points = sizes[1];
     broadcast_from_first_rank(&data.total_volume, sizeof(data.total_volume));
+    broadcast_from_first_rank(&data.density, sizeof(data.density));
     broadcast_from_first_rank(data.reference_position);
     broadcast_from_first_rank(data.lumped_mass);
+    broadcast_from_first_rank(data.first_cell);
     broadcast_from_first_rank(data.boundary_triangle);
     broadcast_from_first_rank(data.boundary_id);
 
@@ -120,16 +110,14 @@ namespace estep
           cells_held_by_ranks(data, rank_count());
         for (unsigned int r = 1; r < held.size(); ++r)
           {
-            send_bytes_from_first_rank(r,
-                                       &held[r].begin,
-                                       sizeof(unsigned int));
-            for_each_cell_array(data, [&](const auto &v) {
+            send_bytes_from_first_rank(r, &held[r].begin, sizeof(unsigned int));
+            data.for_each_cell_array([&](const auto &v) {
               send_from_first_rank(r,
                                    v.data() + held[r].begin,
                                    held[r].end - held[r].begin);
             });
           }
-        for_each_cell_array(data, [&](auto &v) {
+        data.for_each_cell_array([&](auto &v) {
           std::decay_t<decltype(v)>(v.begin() + held[0].begin,
                                     v.begin() + held[0].end)
             .swap(v);
@@ -139,8 +127,7 @@ namespace estep
     else
       {
         receive_bytes_from_first_rank(&data.held_begin, sizeof(unsigned int));
-        for_each_cell_array(data,
-                            [](auto &v) { receive_from_first_rank(v); });
+        data.for_each_cell_array([](auto &v) { receive_from_first_rank(v); });
       }
     return data;
   }
@@ -150,33 +137,28 @@ namespace estep
   P1CellData
   gather_every_cell(const P1CellData &data)
   {
-    const unsigned int n_padded = data.n_padded_cells();
-    if (data.held_begin == 0 && data.held_end() == n_padded)
+    if (rank_count() == 1)
       return data;
+    const unsigned int n_padded = data.n_padded_cells();
+    const BlockRange   mine     = rank_cells(n_padded, this_rank());
+    Assert(data.held_begin <= mine.begin && mine.end <= data.held_end(),
+           dealii::ExcInternalError());
+    // Each rank's cells, in whole blocks of block_size cells (the last one
+    // cut to n_padded after the exchange).
     P1CellData every = data;
     every.held_begin = 0;
-    // Each rank's blocks, in whole blocks of block_size cells (the last one
-    // cut to n_padded after the exchange).
-    const unsigned int n_cell_blocks = n_blocks(n_padded);
-    const BlockRange   mine          = rank_blocks(n_cell_blocks, this_rank());
-    const unsigned int begin = std::min(mine.begin * block_size, n_padded),
-                       end   = std::min(mine.end * block_size, n_padded);
-    Assert(data.held_begin <= begin && end <= data.held_end(),
-           dealii::ExcInternalError());
-    const auto gather = [&](const auto &held, auto &whole) {
-      using T = typename std::decay_t<decltype(held)>::value_type;
-      whole.assign(std::size_t(n_cell_blocks) * block_size, T());
-      std::copy(held.begin() + data.at(begin),
-                held.begin() + data.at(end),
-                whole.begin() + begin);
-      share_block_items(whole.data(), block_size * sizeof(T), n_cell_blocks);
+    every.for_each_cell_array([&](auto &whole) {
+      using T = typename std::decay_t<decltype(whole)>::value_type;
+      const std::vector<T> held = std::move(whole);
+      whole.assign(std::size_t(n_blocks(n_padded)) * block_size, T());
+      std::copy(held.begin() + data.at(mine.begin),
+                held.begin() + data.at(mine.end),
+                whole.begin() + mine.begin);
+      share_block_items(whole.data(),
+                        block_size * sizeof(T),
+                        n_blocks(n_padded));
       whole.resize(n_padded);
-    };
-    for (unsigned int a = 0; a < 4; ++a)
-      gather(data.point[a], every.point[a]);
-    for (unsigned int k = 0; k < 9; ++k)
-      gather(data.shape_gradient[k], every.shape_gradient[k]);
-    gather(data.volume, every.volume);
+    });
     return every;
   }
 } // namespace estep

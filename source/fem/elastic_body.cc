@@ -17,46 +17,39 @@ namespace estep
                            std::shared_ptr<const Material>    material,
                            const double                       density,
                            const std::string                 &name)
-    : ElasticBody(make_p1_cell_data(tria, density),
-                  std::move(material),
-                  density,
-                  name)
+    : ElasticBody(make_p1_cell_data(tria, density), std::move(material), name)
   {}
 
 
 
   ElasticBody::ElasticBody(P1CellData                      cell_data,
                            std::shared_ptr<const Material> material,
-                           const double                    density,
                            const std::string              &name)
     : body_name(name)
     , body_material(std::move(material))
-    , rho(density)
     , data(std::move(cell_data))
   {
     AssertThrow(body_material != nullptr,
                 dealii::ExcMessage("ElasticBody: no material given."));
-    AssertThrow(density > 0. && std::isfinite(density),
+    AssertThrow(data.density > 0. && std::isfinite(data.density),
                 dealii::ExcMessage(
                   "ElasticBody: the density must be positive (got " +
-                  std::to_string(density) + ")."));
-    // The per-cell arrays must hold at least this rank's blocks (all cells
+                  std::to_string(data.density) + ")."));
+    // The per-cell arrays must hold at least this rank's cells (all of them
     // on one rank).
     const unsigned int n_padded = data.n_padded_cells();
     const unsigned int n_held   = data.volume.size();
-    const BlockRange   blocks   = rank_blocks(n_blocks(n_padded), this_rank());
-    bool               complete =
-      data.n_cells > 0 && data.held_begin % n_lanes == 0 &&
-      n_held % n_lanes == 0 && data.held_end() <= n_padded &&
-      data.held_begin <= blocks.begin * block_size &&
-      std::min(blocks.end * block_size, n_padded) <= data.held_end() &&
-      data.reference_position.size() == 3 * data.n_points &&
-      data.lumped_mass.size() == data.n_points &&
-      data.boundary_id.size() == data.boundary_triangle.size();
-    for (const auto &v : data.point)
-      complete = complete && v.size() == n_held;
-    for (const auto &v : data.shape_gradient)
-      complete = complete && v.size() == n_held;
+    const BlockRange   mine     = rank_cells(n_padded, this_rank());
+    bool complete = data.n_cells > 0 && data.held_begin % n_lanes == 0 &&
+                    n_held % n_lanes == 0 && data.held_end() <= n_padded &&
+                    data.held_begin <= mine.begin &&
+                    mine.end <= data.held_end() &&
+                    data.reference_position.size() == 3 * data.n_points &&
+                    data.lumped_mass.size() == data.n_points &&
+                    data.first_cell.size() == data.n_points &&
+                    data.boundary_id.size() == data.boundary_triangle.size();
+    data.for_each_cell_array(
+      [&](const auto &v) { complete = complete && v.size() == n_held; });
     AssertThrow(complete,
                 dealii::ExcMessage("ElasticBody: incomplete cell data."));
 
@@ -70,7 +63,7 @@ namespace estep
         for (unsigned int c = 0; c < 3; ++c)
           inv_mass[3 * i + c] = 1. / data.lumped_mass[i];
       }
-    scratch_J.resize(n_padded);
+    scratch_J.resize(n_held);
     scratch_positions.resize(3 * data.n_points + 1);
   }
 
@@ -103,7 +96,8 @@ namespace estep
   namespace
   {
     /**
-     * J_e = det F_e of the cells of @p cells (padding included) into @p J for
+     * J_e = det F_e of the cells of @p cells (padding included) into @p J
+     * (at data.at(e)) for
      * positions @p x (padded, see load_triples()); returns the sum over them
      * of |Omega_e| (|F_e|^2 - 3).
      */
@@ -119,7 +113,7 @@ namespace estep
           Lanes F[9], C[9];
           internal::deformation_gradient(x, data, e, F);
           internal::cofactor(F, C);
-          store_lanes(J + e, internal::determinant(F, C));
+          store_lanes(J + data.at(e), internal::determinant(F, C));
           square += load_lanes(data.volume.data() + data.at(e)) *
                     (internal::contract(F, F) - 3.);
         }
@@ -166,8 +160,8 @@ namespace estep
           for (unsigned int b = 0; b < m / n_lanes; ++b)
             {
               const unsigned int e = begin + n_lanes * b;
-              const unsigned int i = data.at(e);
-              const Lanes        w = load_lanes(data.volume.data() + i);
+              const unsigned int h = data.at(e);
+              const Lanes        w = load_lanes(data.volume.data() + h);
               const Lanes dfv = load_lanes(df + n_lanes * b) * w, cv = c * w;
               Lanes       P[9];
               for (unsigned int l = 0; l < 9; ++l)
@@ -182,7 +176,7 @@ namespace estep
                   Lanes B[3];
                   for (unsigned int j = 0; j < 3; ++j)
                     B[j] =
-                      load_lanes(data.shape_gradient[3 * a + j].data() + i);
+                      load_lanes(data.shape_gradient[3 * a + j].data() + h);
                   for (unsigned int i = 0; i < 3; ++i)
                     {
                       force[a + 1][i] = P[3 * i] * B[0] + P[3 * i + 1] * B[1] +
@@ -193,7 +187,7 @@ namespace estep
               // Added cell by cell (the cells of a batch may share
               // vertices).
               for (unsigned int a = 0; a < 4; ++a)
-                add_triples(y, data.point[a].data() + i, force[a]);
+                add_triples(y, data.point[a].data() + h, force[a]);
             }
         }
     }
@@ -225,7 +219,7 @@ namespace estep
                                                        cells,
                                                        scratch_J.data());
         return Terms{body_material->sum_volumetric_energy(
-                       scratch_J.data() + cells.begin,
+                       scratch_J.data() + data.at(cells.begin),
                        data.volume.data() + data.at(cells.begin),
                        std::min(cells.end, data.n_cells) - cells.begin),
                      square};
@@ -306,22 +300,13 @@ namespace estep
     for (unsigned int b = mine.begin; b < mine.end; ++b)
       block_part[b] = static_cast<unsigned long long>(b - mine.begin) *
                       n_parts / (mine.end - mine.begin);
-    // Each point's owner: that of the block of its first cell, the first
-    // over the ranks' cells (each holds at least its blocks').
-    std::vector<unsigned int> first_cell(data.n_points, n_padded);
-    for (unsigned int e = data.held_begin; e < data.held_end(); ++e)
-      for (unsigned int a = 0; a < 4; ++a)
-        {
-          const unsigned int p = data.point[a][data.at(e)];
-          first_cell[p]        = std::min(first_cell[p], e);
-        }
-    smallest_over_ranks(first_cell);
+    // Each point's owner: that of the block of its first cell.
     std::vector<unsigned int> point_rank(data.n_points),
       point_part(data.n_points);
     for (unsigned int p = 0; p < data.n_points; ++p)
       {
-        point_rank[p] = block_rank[first_cell[p] / block_size];
-        point_part[p] = block_part[first_cell[p] / block_size];
+        point_rank[p] = block_rank[data.first_cell[p] / block_size];
+        point_part[p] = block_part[data.first_cell[p] / block_size];
       }
 
     doubles_per_rank.assign(ranks, 0);
@@ -423,7 +408,7 @@ namespace estep
   double
   ElasticBody::density() const
   {
-    return rho;
+    return data.density;
   }
 
   double
@@ -497,10 +482,23 @@ namespace estep
   const P1CellData &
   ElasticBody::every_cell_data() const
   {
-    if (data.held_begin == 0 && data.held_end() == data.n_padded_cells())
+    if (rank_count() == 1)
       return data;
     if (gathered_cells == nullptr)
       gathered_cells = std::make_unique<P1CellData>(gather_every_cell(data));
+    return *gathered_cells;
+  }
+
+  const P1CellData &
+  ElasticBody::data_of(const BlockRange cells) const
+  {
+    Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
+           dealii::ExcInternalError());
+    if (data.held_begin <= cells.begin && cells.end <= data.held_end())
+      return data;
+    AssertThrow(gathered_cells != nullptr,
+                dealii::ExcMessage("ElasticBody: cells this rank does not "
+                                   "hold, before every_cell_data()."));
     return *gathered_cells;
   }
 
@@ -517,8 +515,7 @@ namespace estep
                            std::vector<double> &energy_density) const
   {
     AssertDimension(q.size(), n_dofs());
-    Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
-           dealii::ExcInternalError());
+    const P1CellData &cell_data = data_of(cells);
     J.resize(cells.end - cells.begin);
     energy_density.resize(cells.end - cells.begin);
     const double c  = body_material->quadratic_modulus();
@@ -526,7 +523,7 @@ namespace estep
     for (unsigned int e = cells.begin; e < cells.end; ++e)
       {
         double F[9], C[9];
-        internal::deformation_gradient(q.data(), data, e, F);
+        internal::deformation_gradient(q.data(), cell_data, e, F);
         internal::cofactor(F, C);
         const double Je    = internal::determinant(F, C);
         J[e - cells.begin] = Je;
@@ -544,15 +541,14 @@ namespace estep
                              std::vector<double> &von_mises) const
   {
     AssertDimension(q.size(), n_dofs());
-    Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
-           dealii::ExcInternalError());
+    const P1CellData &cell_data = data_of(cells);
     cauchy.resize(9 * std::size_t(cells.end - cells.begin));
     von_mises.resize(cells.end - cells.begin);
     const double c = body_material->quadratic_modulus();
     for (unsigned int e = cells.begin; e < cells.end; ++e)
       {
         double F[9], C[9];
-        internal::deformation_gradient(q.data(), data, e, F);
+        internal::deformation_gradient(q.data(), cell_data, e, F);
         internal::cofactor(F, C);
         const double J     = internal::determinant(F, C);
         const double df    = body_material->volumetric_derivative(J);

@@ -11,6 +11,7 @@
 #include <estep/fem/meshes.h>
 #include <estep/fem/p1_cell_data.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -78,6 +79,7 @@ namespace estep
                   dealii::ExcInternalError());
 
     P1CellData data;
+    data.density                = density;
     data.n_cells                = tria.n_active_cells();
     data.n_points               = dof_handler.n_dofs() / 3;
     const unsigned int n_padded = data.n_padded_cells();
@@ -88,6 +90,7 @@ namespace estep
     data.volume.resize(n_padded);
     data.reference_position.assign(3 * data.n_points, 0.);
     data.lumped_mass.assign(data.n_points, 0.);
+    data.first_cell.assign(data.n_points, data.n_cells);
     std::vector<unsigned int> point_of_vertex(
       tria.n_vertices(), std::numeric_limits<unsigned int>::max());
 
@@ -108,6 +111,7 @@ namespace estep
               }
             data.point[a][e]                       = p;
             point_of_vertex[cell->vertex_index(a)] = p;
+            data.first_cell[p] = std::min(data.first_cell[p], e);
           }
         dealii::Tensor<2, 3> Dm;
         for (unsigned int a = 0; a < 3; ++a)

@@ -23,12 +23,12 @@ namespace estep
                          const unsigned int e,
                          double            *F)
     {
-      const unsigned int i  = d.at(e);
-      const unsigned int p0 = 3 * d.point[0][i], p1 = 3 * d.point[1][i],
-                         p2 = 3 * d.point[2][i], p3 = 3 * d.point[3][i];
+      const unsigned int h  = d.at(e);
+      const unsigned int p0 = 3 * d.point[0][h], p1 = 3 * d.point[1][h],
+                         p2 = 3 * d.point[2][h], p3 = 3 * d.point[3][h];
       double B[9];
       for (unsigned int k = 0; k < 9; ++k)
-        B[k] = d.shape_gradient[k][i];
+        B[k] = d.shape_gradient[k][h];
       for (unsigned int i = 0; i < 3; ++i)
         {
           const double x0 = x[p0 + i];
@@ -50,15 +50,15 @@ namespace estep
                          const unsigned int e,
                          Lanes             *F)
     {
-      const unsigned int i = d.at(e);
+      const unsigned int h = d.at(e);
       Lanes              B[9];
       for (unsigned int k = 0; k < 9; ++k)
-        B[k] = load_lanes(d.shape_gradient[k].data() + i);
+        B[k] = load_lanes(d.shape_gradient[k].data() + h);
       Lanes x0[3], x1[3], x2[3], x3[3];
-      load_triples(x, d.point[0].data() + i, x0);
-      load_triples(x, d.point[1].data() + i, x1);
-      load_triples(x, d.point[2].data() + i, x2);
-      load_triples(x, d.point[3].data() + i, x3);
+      load_triples(x, d.point[0].data() + h, x0);
+      load_triples(x, d.point[1].data() + h, x1);
+      load_triples(x, d.point[2].data() + h, x2);
+      load_triples(x, d.point[3].data() + h, x3);
       for (unsigned int i = 0; i < 3; ++i)
         {
           const Lanes d1 = x1[i] - x0[i], d2 = x2[i] - x0[i],

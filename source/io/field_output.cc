@@ -51,7 +51,11 @@ namespace estep
     {
       if (format == Format::hdf5)
         {
-          make_dof_handler(bodies.body(0).cell_data());
+          // The first process writes the whole body: every process sends it
+          // its cells.
+          const P1CellData &every = bodies.body(0).every_cell_data();
+          if (rank == 0)
+            make_dof_handler(every);
           return;
         }
       for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
@@ -63,18 +67,15 @@ namespace estep
                                                    std::size_t(cells.n_cells));
               for (unsigned int e = 0; e < cells.n_cells; ++e)
                 for (unsigned int a = 0; a < 4; ++a)
-                  tetrahedra[4 * e + a] = cells.point[a][e];
+                  tetrahedra[4 * e + a] = cells.point[a][cells.at(e)];
               vtu.push_back(std::make_unique<VtuFile>(cells.reference_position,
                                                       tetrahedra));
               pieces.push_back({{0, cells.n_cells}, {}});
               continue;
             }
           // This process's piece: the cells of its blocks and their points.
-          const BlockRange blocks =
-            rank_blocks(n_blocks(cells.n_padded_cells()), rank);
           Piece piece;
-          piece.cells = {std::min(blocks.begin * block_size, cells.n_cells),
-                         std::min(blocks.end * block_size, cells.n_cells)};
+          piece.cells                      = rank_cells(cells.n_cells, rank);
           constexpr unsigned int    unused = -1;
           std::vector<unsigned int> local(cells.n_points, unused);
           for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
@@ -523,13 +524,6 @@ namespace estep
           "system <" +
           system.name() + "> has " + std::to_string(bodies->n_bodies()) +
           "; choose vtu.");
-      if (format == "hdf5" && rank_count() > 1)
-        throw std::runtime_error(
-          "Postprocessors/Field output/Format: hdf5 writes the whole body "
-          "from one process, and each of the " +
-          std::to_string(rank_count()) +
-          " processes holds only its cells; choose vtu (a piece per "
-          "process).");
       if (!(interval > 0.))
         throw std::runtime_error(
           "Postprocessors/Field output/Interval: must be positive.");

@@ -5,6 +5,7 @@
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
 #include <estep/fem/ball_mesh.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
@@ -104,18 +105,21 @@ namespace estep
                        std::array<double, 3>{{-speed, 0., 0.}},
                        std::array<double, 3>{{0., spin, 0.}}}})
         {
-          dealii::Triangulation<3> tria;
-          try
-            {
-              make_ball_mesh(tria, size, scale * R, centre);
-            }
-          catch (const std::exception &e)
-            {
-              throw std::runtime_error("Colliding balls/Mesh size: " +
-                                       one_line_message(e));
-            }
-          auto body =
-            std::make_shared<ElasticBody>(tria, material, density, "ball");
+          const auto make_ball = [&](dealii::Triangulation<3> &tria) {
+            try
+              {
+                make_ball_mesh(tria, size, scale * R, centre);
+              }
+            catch (const std::exception &e)
+              {
+                throw std::runtime_error("Colliding balls/Mesh size: " +
+                                         one_line_message(e));
+              }
+          };
+          auto body = std::make_shared<ElasticBody>(
+            make_p1_cell_data_on_first_rank(make_ball, density),
+            material,
+            "ball");
           q.push_back(body->reference_configuration());
           v.push_back(body->rigid_velocity(q.back(), velocity, omega, centre));
           bodies.push_back(body);

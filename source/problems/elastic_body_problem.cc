@@ -119,7 +119,6 @@ namespace estep
           },
           material.density),
         material.material,
-        material.density,
         "elastic body");
       body->track_point("tracked",
                         parse_point(prm.get("Tracked point"),

@@ -363,7 +363,6 @@ namespace estep
       auto body = std::make_shared<ElasticBodyWithHessian>(
         make_p1_cell_data_on_first_rank(make_placed_mesh, material.density),
         material.material,
-        material.density,
         "body " + std::to_string(b + 1));
       const Vector X = body->reference_configuration();
       if (const std::string tracked = prm.get("Tracked point");

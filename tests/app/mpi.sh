@@ -54,9 +54,34 @@ cube=("$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10"
 same_on_ranks cube "${cube[@]}"
 
 # An implicit method: its Hessian needs every cell, which each process gathers from the others
-# (each holds only the cells it computes). The cube of 5,184 cells (6 blocks), IDA to t = 1.
+# (each holds only the cells it computes). The cube of 5,184 cells (6 blocks), IDA to t = 1; and
+# of 648 cells, one block, which the second process computes alone.
 same_on_ranks ida "$files/spinning_cube_ida_bdf.prm" --set "Elastic body/Mesh/Subdivisions=6" \
   --set "Time integration/End time=1" --set "Postprocessors/List=history"
+same_on_ranks ida_one_block "$files/spinning_cube_ida_bdf.prm" \
+  --set "Elastic body/Mesh/Subdivisions=3" --set "Time integration/End time=1" \
+  --set "Postprocessors/List=history"
+
+# Field output in HDF5: the first process writes the whole body, gathered from the others. The
+# files equal those of one process but for the times of writing HDF5 records in them.
+h5=(--set "Elastic body/Mesh/Subdivisions=6" --set "Time integration/End time=0.5"
+    --set "Postprocessors/List=history, field output"
+    --set "Postprocessors/Field output/Format=hdf5" --set "Postprocessors/Field output/Interval=0.25")
+"$ESTEP" "$files/spinning_cube.prm" "${h5[@]}" --threads 1 --set "Output directory=h5-1" > h5-1.txt 2>&1 ||
+  fail "HDF5 output on 1 process: $(tail -2 h5-1.txt)"
+"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" "${h5[@]}" --threads 1 --set "Output directory=h5-2" \
+  > h5-2.txt 2>&1 || fail "HDF5 output on 2 processes: $(tail -2 h5-2.txt)"
+/usr/bin/env python3 - << 'PY' || fail "HDF5 output on 2 processes differs from 1 process"
+import pathlib
+one = sorted(pathlib.Path("h5-1/fields").glob("*.h5"))
+two = sorted(pathlib.Path("h5-2/fields").glob("*.h5"))
+assert len(one) == 3 and [p.name for p in one] == [p.name for p in two], (one, two)
+for a, b in zip(one, two):
+    x, y = a.read_bytes(), b.read_bytes()
+    differ = sum(u != v for u, v in zip(x, y))
+    assert len(x) == len(y) and differ <= 16, (a.name, len(x), len(y), differ)
+print(f"HDF5 on 2 processes: {len(two)} files as on 1 process")
+PY
 
 # The colliding balls during their contact (about 3,000 cells per ball, 3 blocks each).
 balls=("$files/ball_collision.prm" --set "Colliding balls/Mesh size=0.2"

@@ -1,6 +1,7 @@
-// The cells each MPI rank holds: its blocks and exactly the later cells its points' gradient
-// needs, whole chunks of them (checked by brute force on the seed cube, for 1 to 13 ranks);
-// gathering every cell from data that already holds them all is a copy.
+// The cells each MPI rank holds: its blocks and exactly the later cells its
+// points' gradient needs, whole chunks of them (checked by brute force on the
+// seed cube, for 1, 2, 3, 5, 12 and 13 ranks); on one process, every cell's
+// data is the data itself.
 
 #include <estep/base/distributed_blocks.h>
 #include <estep/fem/distributed_cell_data.h>
@@ -13,8 +14,8 @@
 
 namespace
 {
-  using estep::BlockRange;
   using estep::block_size;
+  using estep::BlockRange;
 
   TEST(CellsHeldByRanks, ItsBlocksAndExactlyTheChunksItsPointsNeed)
   {
@@ -23,11 +24,13 @@ namespace
     const unsigned int       n_blocks = estep::n_blocks(n_padded);
     ASSERT_EQ(n_blocks, 12u);
     constexpr unsigned int chunk = estep::P1CellData::gradient_chunk;
+    // Each point's first cell, by brute force.
     std::vector<unsigned int> first_cell(data.n_points, n_padded);
     for (unsigned int e = 0; e < n_padded; ++e)
       for (unsigned int a = 0; a < 4; ++a)
         first_cell[data.point[a][e]] =
           std::min(first_cell[data.point[a][e]], e);
+    EXPECT_EQ(data.first_cell, first_cell);
     for (const unsigned int n_ranks : {1u, 2u, 3u, 5u, 12u, 13u})
       {
         const std::vector<BlockRange> held =
@@ -35,7 +38,7 @@ namespace
         ASSERT_EQ(held.size(), n_ranks);
         // What each rank must hold, by brute force: its blocks, and the chunk
         // of every cell that touches one of its points.
-        std::vector<BlockRange> needed(n_ranks);
+        std::vector<BlockRange>   needed(n_ranks);
         std::vector<unsigned int> block_rank(n_blocks);
         for (unsigned int r = 0; r < n_ranks; ++r)
           {
@@ -52,7 +55,8 @@ namespace
                 block_rank[first_cell[data.point[a][e]] / block_size];
               EXPECT_LE(needed[r].begin, e);
               needed[r].end =
-                std::max(needed[r].end, std::min((e / chunk + 1) * chunk, n_padded));
+                std::max(needed[r].end,
+                         std::min((e / chunk + 1) * chunk, n_padded));
             }
         unsigned int total = 0, empty = 0;
         for (unsigned int r = 0; r < n_ranks; ++r)
@@ -79,7 +83,7 @@ namespace
       }
   }
 
-  TEST(GatherEveryCell, DataHoldingEveryCellIsCopied)
+  TEST(GatherEveryCell, OnOneProcessTheDataItself)
   {
     const estep::P1CellData &data  = estep_test::seed_cube().cell_data();
     const estep::P1CellData  every = estep::gather_every_cell(data);

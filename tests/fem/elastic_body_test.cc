@@ -121,8 +121,8 @@ namespace
     const auto material = std::make_shared<estep::NeoHookean>(0.0100, 0.0066);
     const estep::ElasticBody from_mesh(tria, material, 2.);
     const estep::ElasticBody from_data(estep::make_p1_cell_data(tria, 2.),
-                                       material,
-                                       2.);
+                                       material);
+    EXPECT_EQ(from_data.density(), 2.);
     EXPECT_EQ(from_data.mass(), from_mesh.mass());
     EXPECT_EQ(from_data.volume(), from_mesh.volume());
     const estep::Vector q = from_mesh.reference_configuration();
@@ -130,11 +130,13 @@ namespace
     for (unsigned int i = 0; i < x.size(); ++i)
       x[i] *= 1. + 0.01 * std::sin(i);
     EXPECT_EQ(from_data.energy(x), from_mesh.energy(x));
-    // Incomplete arrays are refused.
+    // Incomplete arrays are refused, and so are cells short of this rank's.
     estep::P1CellData missing = estep::make_p1_cell_data(tria, 2.);
     missing.lumped_mass.pop_back();
-    EXPECT_THROW(estep::ElasticBody(missing, material, 2.),
-                 dealii::ExceptionBase);
+    EXPECT_THROW(estep::ElasticBody(missing, material), dealii::ExceptionBase);
+    estep::P1CellData part = estep::make_p1_cell_data(tria, 2.);
+    part.for_each_cell_array([](auto &v) { v.resize(v.size() - 4); });
+    EXPECT_THROW(estep::ElasticBody(part, material), dealii::ExceptionBase);
   }
 
   TEST(ElasticBody, SpinningCubeKineticEnergyAndAngularMomentum)

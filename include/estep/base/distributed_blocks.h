@@ -46,6 +46,13 @@ namespace estep
               const unsigned int rank,
               const unsigned int n_ranks = rank_count());
 
+  /** The cells [begin, end) of @p n_cells that @p rank of @p n_ranks
+   * computes: those of its rank_blocks(). */
+  BlockRange
+  rank_cells(const unsigned int n_cells,
+             const unsigned int rank,
+             const unsigned int n_ranks = rank_count());
+
   /**
    * @p items holds @p n_blocks items of @p item_bytes bytes each, of which
    * this rank has written those of rank_blocks(n_blocks, this_rank()); on
@@ -122,11 +129,6 @@ namespace estep
     vector.resize(n);
     receive_bytes_from_first_rank(vector.data(), n * sizeof(T));
   }
-
-  /** Each entry of @p values, on every rank, the smallest of the ranks'.
-   * Collective: every rank must call it with the same size. */
-  void
-  smallest_over_ranks(std::vector<unsigned int> &values);
 
   /** The largest of the ranks' @p value. Collective. */
   int

@@ -19,9 +19,9 @@ namespace estep
 {
   /**
    * The cells each of @p n_ranks ranks holds, from @p data holding every
-   * cell: rank r holds the cells of its blocks (rank_blocks()) and, after them, every
-   * cell that touches a point whose first cell lies in its blocks, to the end
-   * of that cell's gradient chunk (ElasticBody's gradient computes these
+   * cell: rank r holds the cells of its blocks (rank_blocks()) and, after them,
+   * every cell that touches a point whose first cell lies in its blocks, to the
+   * end of that cell's gradient chunk (ElasticBody's gradient computes these
    * points' forces from all their cells, chunk by chunk). An empty range for
    * a rank without blocks.
    */

@@ -47,8 +47,9 @@ namespace estep
    * Its loops over cells run on the threads of thread_count() (see
    * parallel_blocks.h) and, in a run on several MPI ranks, on the ranks'
    * blocks of cells (see distributed_blocks.h; energy() and gradient() are
-   * then collective, and every rank holds the whole state and mesh); they
-   * give the same bits on any number of threads and ranks. Not thread-safe
+   * then collective, and every rank holds the whole state but only the data
+   * of the cells it computes, see distributed_cell_data.h); they give the
+   * same bits on any number of threads and ranks. Not thread-safe
    * itself: energy() and gradient() use internal scratch arrays.
    */
   class ElasticBody : public MechanicalSystem, public ElasticBodies
@@ -67,13 +68,12 @@ namespace estep
 
     /**
      * The body of the mesh @p cell_data describes (make_p1_cell_data() of
-     * its mesh, with the lumped mass of @p density), e.g. as another MPI
-     * rank made it. Throws dealii::ExcMessage if the arrays are incomplete
-     * or a point has no mass.
+     * its mesh and density), e.g. as make_p1_cell_data_on_first_rank() gives
+     * each MPI rank its part. Throws dealii::ExcMessage if the arrays are
+     * incomplete, do not hold this rank's cells, or a point has no mass.
      */
     ElasticBody(P1CellData                      cell_data,
                 std::shared_ptr<const Material> material,
-                const double                    density,
                 const std::string              &name = "elastic body");
 
     ~ElasticBody() override;
@@ -188,7 +188,8 @@ namespace estep
      * output: @p cauchy holds 9 entries per cell (row-major), sigma = f'(J) I
      * + c/J F F^T (from P = f'(J) J F^-T + c F), and @p von_mises the von
      * Mises stress (3/2 s:s)^(1/2) of its deviator s, for cells.begin,
-     * cells.begin + 1, ... Every cell must have J > 0.
+     * cells.begin + 1, ... Every cell must have J > 0. On several ranks,
+     * cells that this rank does not hold need every_cell_data() first.
      */
     void
     cell_stresses(const Vector        &q,
@@ -199,7 +200,9 @@ namespace estep
     /**
      * Per-cell fields of the cells @p cells at the configuration @p q, for
      * output: the volume ratio J = det F and the strain energy density W(F) -
-     * W(I) (energy per unit reference volume; +infinity where J <= 0).
+     * W(I) (energy per unit reference volume; +infinity where J <= 0). On
+     * several ranks, cells that this rank does not hold need
+     * every_cell_data() first.
      */
     void
     cell_fields(const Vector        &q,
@@ -225,7 +228,6 @@ namespace estep
   private:
     std::string                     body_name;
     std::shared_ptr<const Material> body_material;
-    double                          rho;
     P1CellData                      data;
     Vector                          inv_mass;
     /** Scratch of energy(): J per cell. */
@@ -277,8 +279,13 @@ namespace estep
      * used); this rank's points' gradient, where not in place. */
     mutable std::vector<std::vector<double>> part_forces;
     mutable std::vector<double>              scratch_mine, scratch_all;
-    /** every_cell_data() where cell_data() does not hold every cell. */
+    /** every_cell_data() on several ranks, once gathered. */
     mutable std::unique_ptr<P1CellData> gathered_cells;
+
+    /** The data that holds @p cells: cell_data(), or every_cell_data() if
+     * already gathered. */
+    const P1CellData &
+    data_of(const BlockRange cells) const;
     /** Tracked points: name and point index. */
     std::vector<std::pair<std::string, unsigned int>> tracked_points;
   };

@@ -90,8 +90,17 @@ namespace estep
     /** Reference positions, point-major: X[3 i + c]. */
     std::vector<double> reference_position;
 
+    /** The mass density the lumped masses are of (mass per unit reference
+     * volume). */
+    double density = 0.;
+
     /** Lumped mass of each point (row sums of the consistent mass matrix). */
     std::vector<double> lumped_mass;
+
+    /** The first cell of each point: the lowest-numbered cell it is a vertex
+     * of. On several threads or ranks the one that computes this cell
+     * computes the point's gradient. */
+    std::vector<unsigned int> first_cell;
 
     /** The boundary faces as triples of points, oriented so that (x_1 - x_0)
      * x (x_2 - x_0) points out of the body, in the order of the cells and
@@ -100,6 +109,30 @@ namespace estep
 
     /** The boundary id of each of them. */
     std::vector<unsigned int> boundary_id;
+
+    /** Apply @p f to each per-cell array (those indexed by at(e)). */
+    template <typename F>
+    void
+    for_each_cell_array(const F &f)
+    {
+      for (auto &v : point)
+        f(v);
+      for (auto &v : shape_gradient)
+        f(v);
+      f(volume);
+    }
+
+    /** The same, read only. */
+    template <typename F>
+    void
+    for_each_cell_array(const F &f) const
+    {
+      for (const auto &v : point)
+        f(v);
+      for (const auto &v : shape_gradient)
+        f(v);
+      f(volume);
+    }
   };
 
 
@@ -108,8 +141,8 @@ namespace estep
    * The P1CellData of the tetrahedral mesh @p tria, of mass density
    * @p density: the geometry from the vertices, the lumped mass from deal.II
    * (FE_SimplexP, QGaussSimplex, MappingFE), checked against the geometry.
-   * Throws dealii::ExcMessage if the mesh has non-tetrahedral, inverted or
-   * degenerate cells, or a vertex in no cell.
+   * Throws dealii::ExcMessage if @p density is not positive or the mesh has
+   * non-tetrahedral, inverted or degenerate cells.
    */
   P1CellData
   make_p1_cell_data(const dealii::Triangulation<3, 3> &tria,
