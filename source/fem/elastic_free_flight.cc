@@ -211,11 +211,12 @@ namespace estep
           internal::deformation_gradient(v, d, e, G);
           internal::cofactor(F, CF);
           internal::cofactor(G, CG);
-          store_lanes(c0 + e, internal::determinant(F, CF));
-          store_lanes(c1 + e, internal::contract(CF, G));
-          store_lanes(c2 + e, internal::contract(CG, F));
-          store_lanes(c3 + e, internal::determinant(G, CG));
-          const Lanes w = load_lanes(d.volume.data() + d.at(e));
+          const unsigned int h = d.at(e);
+          store_lanes(c0 + h, internal::determinant(F, CF));
+          store_lanes(c1 + h, internal::contract(CF, G));
+          store_lanes(c2 + h, internal::contract(CG, F));
+          store_lanes(c3 + h, internal::determinant(G, CG));
+          const Lanes w = load_lanes(d.volume.data() + h);
           FF += w * (internal::contract(F, F) - 3.);
           FG += w * internal::contract(F, G);
           GG += w * internal::contract(G, G);
@@ -257,14 +258,16 @@ namespace estep
   {
     AssertDimension(q.size(), body.n_dofs());
     AssertDimension(v.size(), body.n_dofs());
-    // Not value-initialised: every entry is written before it is read.
+    // Per cell this rank holds (at(e)); not value-initialised: every entry is
+    // written before it is read.
     const unsigned int n_padded = body.cell_data().n_padded_cells();
-    storage.reset(new double[6 * std::size_t(n_padded)]);
+    n_held                      = body.cell_data().volume.size();
+    storage.reset(new double[6 * std::size_t(n_held)]);
     c0      = storage.get();
-    c1      = c0 + n_padded;
-    c2      = c1 + n_padded;
-    c3      = c2 + n_padded;
-    scratch = c3 + n_padded;
+    c1      = c0 + n_held;
+    c2      = c1 + n_held;
+    c3      = c2 + n_held;
+    scratch = c3 + n_held;
     // Not value-initialised either (copy_padded() writes every entry).
     const std::unique_ptr<double[]> padded(new double[2 * (q.size() + 1)]);
     double *const padded_q = padded.get(), *const padded_v =
@@ -306,23 +309,15 @@ namespace estep
   LineValue
   ElasticFreeFlight::volumetric_part(const double s, const bool slope) const
   {
-    const unsigned int n_padded = body.cell_data().n_padded_cells();
     return sum_over_distributed_blocks<LineValue>(
       n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange   cells  = block_range(b, n_cells);
         const unsigned int count  = cells.end - cells.begin;
-        double            *J      = scratch + cells.begin;
-        double            *dJ     = slope ? J + n_padded : nullptr;
-        const P1CellData  &data   = body.cell_data();
-        const double      *volume = data.volume.data() + data.at(cells.begin);
-        evaluate_cubics(s,
-                        c0 + cells.begin,
-                        c1 + cells.begin,
-                        c2 + cells.begin,
-                        c3 + cells.begin,
-                        count,
-                        J,
-                        dJ);
+        const unsigned int h      = at(cells.begin);
+        double            *J      = scratch + h;
+        double            *dJ     = slope ? J + n_held : nullptr;
+        const double      *volume = body.cell_data().volume.data() + h;
+        evaluate_cubics(s, c0 + h, c1 + h, c2 + h, c3 + h, count, J, dJ);
         if (slope)
           return body.material().sum_volumetric_energy_and_slope(J,
                                                                  dJ,
@@ -489,16 +484,9 @@ namespace estep
           {
             const unsigned int count =
               std::min(JacobianRanges::size, cells.end - begin);
-            const P1CellData &data   = body.cell_data();
-            const double     *volume = data.volume.data() + data.at(begin);
-            enclose_cubics(m,
-                           r,
-                           c0 + begin,
-                           c1 + begin,
-                           c2 + begin,
-                           c3 + begin,
-                           count,
-                           ranges);
+            const unsigned int h      = at(begin);
+            const double      *volume = body.cell_data().volume.data() + h;
+            enclose_cubics(m, r, c0 + h, c1 + h, c2 + h, c3 + h, count, ranges);
             const LineValue centre =
               body.material().sum_volumetric_energy_and_slope(ranges.J,
                                                               ranges.dJ,
@@ -577,20 +565,15 @@ namespace estep
           {
             const unsigned int count =
               std::min(JacobianRanges::size, cells.end - begin);
-            enclose_cubics(m,
-                           half_width,
-                           c0 + begin,
-                           c1 + begin,
-                           c2 + begin,
-                           c3 + begin,
-                           count,
-                           ranges);
+            const unsigned int h = at(begin);
+            enclose_cubics(
+              m, half_width, c0 + h, c1 + h, c2 + h, c3 + h, count, ranges);
             const LineEnclosure chunk = body.material().enclose_volumetric_sum(
               ranges.J_lo,
               ranges.J_hi,
               ranges.dJ_lo,
               ranges.dJ_hi,
-              body.cell_data().volume.data() + body.cell_data().at(begin),
+              body.cell_data().volume.data() + h,
               count);
             block_sum.value += chunk.value;
             block_sum.derivative += chunk.derivative;
@@ -639,16 +622,16 @@ namespace estep
       n_blocks(n_cells), [&](const unsigned int b) {
         const BlockRange cells = block_range(b, n_cells);
         double           best  = infinity;
-        for (unsigned int e = cells.begin; e < cells.end; ++e)
+        for (unsigned int h = at(cells.begin); h < at(cells.end); ++h)
           {
-            if (!(c0[e] >
-                  cubic_rounding * cubic_scale(c0[e], c1[e], c2[e], c3[e], 0.)))
+            if (!(c0[h] >
+                  cubic_rounding * cubic_scale(c0[h], c1[h], c2[h], c3[h], 0.)))
               {
                 best = 0.;
                 break;
               }
             best =
-              std::min(best, first_inversion(c0[e], c1[e], c2[e], c3[e], best));
+              std::min(best, first_inversion(c0[h], c1[h], c2[h], c3[h], best));
           }
         return best;
       });
@@ -658,11 +641,18 @@ namespace estep
     return limit;
   }
 
+  unsigned int
+  ElasticFreeFlight::at(const unsigned int e) const
+  {
+    return body.cell_data().at(e);
+  }
+
   std::array<double, 4>
   ElasticFreeFlight::jacobian_cubic(const unsigned int e) const
   {
     AssertIndexRange(e, n_cells);
-    return {{c0[e], c1[e], c2[e], c3[e]}};
+    const unsigned int h = at(e);
+    return {{c0[h], c1[h], c2[h], c3[h]}};
   }
 
   std::array<double, 3>

@@ -69,7 +69,8 @@ namespace estep
     double
     value_tolerance() const override;
 
-    /** The cubic coefficients c_k of J_e(s) of cell @p e. */
+    /** The cubic coefficients c_k of J_e(s) of cell @p e (one this rank
+     * computes). */
     std::array<double, 4>
     jacobian_cubic(const unsigned int e) const;
 
@@ -104,10 +105,17 @@ namespace estep
                  const double m,
                  const double half_width) const;
 
+    /** Where cell @p e is in the per-cell arrays: those of the cells the
+     * body holds (P1CellData::at()). */
+    unsigned int
+    at(const unsigned int e) const;
+
     const ElasticBody &body;
     unsigned int       n_cells;
-    /** The four arrays of cubic coefficients and two cell-length scratch
-     * arrays (J and J' of value() and value_and_derivative()), in one
+    /** The number of cells the body holds (P1CellData::volume.size()). */
+    unsigned int n_held = 0;
+    /** The four arrays of cubic coefficients and two scratch arrays (J and J'
+     * of value() and value_and_derivative()), n_held entries each, in one
      * allocation. */
     std::unique_ptr<double[]> storage;
     double                   *c0, *c1, *c2, *c3;
