@@ -81,6 +81,20 @@ namespace estep
 
 
 
+  std::vector<unsigned int>
+  block_ranks(const unsigned int n_blocks, const unsigned int n_ranks)
+  {
+    std::vector<unsigned int> ranks(n_blocks);
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      {
+        const BlockRange blocks = rank_blocks(n_blocks, r, n_ranks);
+        std::fill(ranks.begin() + blocks.begin, ranks.begin() + blocks.end, r);
+      }
+    return ranks;
+  }
+
+
+
   BlockRange
   rank_cells(const unsigned int n_cells,
              const unsigned int rank,

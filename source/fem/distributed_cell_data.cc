@@ -19,16 +19,10 @@ namespace estep
            dealii::ExcInternalError());
     const unsigned int      n_padded = data.n_padded_cells();
     std::vector<BlockRange> held(n_ranks);
-    // The rank of each block.
-    std::vector<unsigned int> block_rank(n_blocks(n_padded));
     for (unsigned int r = 0; r < n_ranks; ++r)
-      {
-        held[r]                 = rank_cells(n_padded, r, n_ranks);
-        const BlockRange blocks = rank_blocks(block_rank.size(), r, n_ranks);
-        std::fill(block_rank.begin() + blocks.begin,
-                  block_rank.begin() + blocks.end,
-                  r);
-      }
+      held[r] = rank_cells(n_padded, r, n_ranks);
+    const std::vector<unsigned int> block_rank =
+      block_ranks(n_blocks(n_padded), n_ranks);
     constexpr unsigned int chunk = P1CellData::gradient_chunk;
     for (unsigned int e = 0; e < n_padded; ++e)
       {

@@ -285,17 +285,10 @@ namespace estep
     const unsigned int n_padded = data.n_padded_cells();
     const unsigned int me       = this_rank();
     // The owner of each block of cells: a rank, and in this rank a part.
-    const unsigned int        n_cell_blocks = n_blocks(n_padded);
-    std::vector<unsigned int> block_rank(n_cell_blocks),
-      block_part(n_cell_blocks, 0);
-    for (unsigned int r = 0; r < ranks; ++r)
-      {
-        const BlockRange blocks = rank_blocks(n_cell_blocks, r);
-        std::fill(block_rank.begin() + blocks.begin,
-                  block_rank.begin() + blocks.end,
-                  r);
-      }
-    const BlockRange   mine    = rank_blocks(n_cell_blocks, me);
+    const unsigned int              n_cell_blocks = n_blocks(n_padded);
+    const std::vector<unsigned int> block_rank    = block_ranks(n_cell_blocks);
+    std::vector<unsigned int>       block_part(n_cell_blocks, 0);
+    const BlockRange                mine = rank_blocks(n_cell_blocks, me);
     const unsigned int n_parts = std::min(threads, mine.end - mine.begin);
     for (unsigned int b = mine.begin; b < mine.end; ++b)
       block_part[b] = static_cast<unsigned long long>(b - mine.begin) *

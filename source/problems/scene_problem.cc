@@ -23,7 +23,6 @@
 
 #include <array>
 #include <cmath>
-#include <map>
 #include <set>
 #include <stdexcept>
 

@@ -46,6 +46,12 @@ namespace estep
               const unsigned int rank,
               const unsigned int n_ranks = rank_count());
 
+  /** The rank of @p n_ranks that computes each of @p n_blocks blocks (see
+   * rank_blocks()). */
+  std::vector<unsigned int>
+  block_ranks(const unsigned int n_blocks,
+              const unsigned int n_ranks = rank_count());
+
   /** The cells [begin, end) of @p n_cells that @p rank of @p n_ranks
    * computes: those of its rank_blocks(). */
   BlockRange
