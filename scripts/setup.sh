@@ -31,9 +31,9 @@ default_tier=(-LE "paper|long|mutation|fuzz")
 # openmpi-bin Open MPI's launcher, mpirun, for the runs on several processes); numdiff
 # is expected by deal.II's test tools; GoogleTest for the tests, Google Benchmark for the
 # benchmarks, clang-format (14 on Debian 12) for the formatting check, Python with matplotlib
-# for the plotting and study scripts.
+# for the plotting and study scripts, h5py for the tests that read HDF5 output.
 packages=(libdeal.ii-dev openmpi-bin cmake g++ make numdiff libgtest-dev libbenchmark-dev clang-format
-          python3 python3-matplotlib python3-numpy)
+          python3 python3-matplotlib python3-numpy python3-h5py)
 if [[ $action == --fuzz ]]; then
   # clang 14 and its runtime libraries: libFuzzer and the sanitizers.
   packages+=(clang-14 libclang-rt-14-dev)

@@ -434,8 +434,9 @@ namespace estep
     /**
      * Remove what an earlier run left in @p directory that this run might not
      * overwrite, so that nothing there describes another run: field
-     * snapshots, the obstacles and their series files, the step histogram,
-     * the log, the checkpoint. Only estep's own file names are touched.
+     * snapshots, the meshes, the obstacles and their series files, the step
+     * histogram, the log, the checkpoint. Only estep's own file names are
+     * touched.
      */
     void
     remove_earlier_outputs(const std::filesystem::path &directory)
@@ -452,7 +453,8 @@ namespace estep
         for (const auto &entry : std::filesystem::directory_iterator(fields))
           {
             const std::string name = entry.path().filename().string();
-            if (name.rfind("solution-", 0) == 0 || name == "obstacles.vtu")
+            if (name.rfind("solution-", 0) == 0 || name == "obstacles.vtu" ||
+                name.rfind("mesh.h5", 0) == 0)
               std::filesystem::remove(entry.path());
           }
     }

@@ -1,20 +1,12 @@
-#include <deal.II/base/data_out_base.h>
-#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_simplex_p.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_fe.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/numerics/data_component_interpretation.h>
-#include <deal.II/numerics/data_out.h>
 
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/json_writer.h>
-#include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/io/field_output.h>
+#include <estep/io/hdf5_file.h>
 #include <estep/io/vtu_file.h>
+#include <estep/io/xdmf_series.h>
 
 #include <chrono>
 #include <cstdio>
@@ -25,14 +17,48 @@
 
 namespace estep
 {
+  namespace
+  {
+    /** The fields of a snapshot, in this order. */
+    const std::vector<XdmfSeries::Field> snapshot_fields = {
+      {"displacement", 3, false},
+      {"velocity", 3, false},
+      {"J", 1, true},
+      {"strain_energy_density", 1, true},
+      {"cauchy_stress", 9, true},
+      {"von_mises_stress", 1, true}};
+
+    /** The message of @p error, a file that could not be written, as
+     * field output's. */
+    std::string
+    field_output_message(const std::runtime_error &error)
+    {
+      std::string message = error.what();
+      if (!message.empty() && message.back() == '.')
+        message.pop_back();
+      return "Field output: " + message + ".";
+    }
+
+    /** The HDF5 group of body @p b. */
+    std::string
+    body_group(const unsigned int b)
+    {
+      return "body" + std::to_string(b + 1);
+    }
+  } // namespace
+
+
+
   struct FieldOutput::Implementation
   {
     /** This process's piece of a body: the cells of its blocks (all on one
-     * process) and, on several, the points they use. */
+     * process), and the points whose values it writes: in vtu, on several
+     * processes, those of its cells; in HDF5, a balanced share of all. */
     struct Piece
     {
       BlockRange                cells;
       std::vector<unsigned int> points;
+      BlockRange                point_rows;
     };
 
     Implementation(const ElasticBodies &bodies,
@@ -45,22 +71,20 @@ namespace estep
       , format(format)
       , interval(interval)
       , next_time(start_time)
-      , mapping(dealii::FE_SimplexP<3>(1))
       , rank(this_rank())
       , ranks(rank_count())
     {
-      if (format == Format::hdf5)
-        {
-          // The first process writes the whole body: every process sends it
-          // its cells.
-          const P1CellData &every = bodies.body(0).every_cell_data();
-          if (rank == 0)
-            make_dof_handler(every);
-          return;
-        }
       for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
         {
           const P1CellData &cells = bodies.body(b).cell_data();
+          Piece             piece;
+          piece.cells      = rank_cells(cells.n_cells, rank);
+          piece.point_rows = rank_blocks(cells.n_points, rank);
+          if (format == Format::hdf5)
+            {
+              pieces.push_back(std::move(piece));
+              continue;
+            }
           if (ranks == 1)
             {
               std::vector<unsigned int> tetrahedra(4 *
@@ -70,12 +94,10 @@ namespace estep
                   tetrahedra[4 * e + a] = cells.point[a][cells.at(e)];
               vtu.push_back(std::make_unique<VtuFile>(cells.reference_position,
                                                       tetrahedra));
-              pieces.push_back({{0, cells.n_cells}, {}});
+              pieces.push_back(std::move(piece));
               continue;
             }
           // This process's piece: the cells of its blocks and their points.
-          Piece piece;
-          piece.cells                      = rank_cells(cells.n_cells, rank);
           constexpr unsigned int    unused = -1;
           std::vector<unsigned int> local(cells.n_points, unused);
           for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
@@ -104,68 +126,103 @@ namespace estep
     const Format                format;
     const double                interval;
     double                      next_time;
-    const dealii::MappingFE<3>  mapping;
-    /** Whether the system has obstacles to draw (fields/obstacles.vtu). */
+    /** Whether the system has obstacles to draw. */
     bool has_obstacles = false;
     /** This process and the number of processes: on several, each writes
-     * its piece of every body, and the first the .pvtu files and the
-     * series. */
+     * its piece of every body, and the first the series (and in vtu the
+     * .pvtu files). */
     const unsigned int rank, ranks;
     /** Each body's mesh, or this process's piece of it, encoded once
      * (format vtu). */
-    std::vector<std::unique_ptr<VtuFile>>       vtu;
-    std::vector<Piece>                          pieces;
-    std::vector<std::pair<double, std::string>> pvd_records;
-    /** Snapshots not yet in solution.pvd, and when it was last written. */
-    bool                                  pvd_pending = false;
-    std::chrono::steady_clock::time_point pvd_written;
+    std::vector<std::unique_ptr<VtuFile>> vtu;
+    std::vector<Piece>                    pieces;
+    /** The time and the file (relative to the output directory) of every
+     * snapshot written, and in HDF5 the layout of the files. */
+    std::vector<std::pair<double, std::string>> series;
+    XdmfSeries                                  xdmf;
+    /** Snapshots not yet in the series file, and when it was last written. */
+    bool                                  series_pending = false;
+    std::chrono::steady_clock::time_point series_written;
 
+    /** Rewrites solution.pvd or solution.xdmf (first process only). */
     void
-    write_pvd()
+    write_series()
     {
-      std::ostringstream pvd;
-      dealii::DataOutBase::write_pvd_record(pvd, pvd_records);
-      write_file_atomically((directory / "solution.pvd").string(), pvd.str());
-      pvd_pending = false;
-      pvd_written = std::chrono::steady_clock::now();
+      if (format == Format::vtu)
+        {
+          std::ostringstream pvd;
+          VtuFile::write_series(pvd, series);
+          write_file_atomically((directory / "solution.pvd").string(),
+                                pvd.str());
+        }
+      else
+        write_file_atomically((directory / "solution.xdmf").string(),
+                              xdmf.text(series));
+      series_pending = false;
+      series_written = std::chrono::steady_clock::now();
     }
-    std::vector<dealii::XDMFEntry> xdmf_entries;
 
-    /** Format hdf5: a deal.II mesh of the body for DataOut, its cells
-     * those of the body in their order, and for each degree of freedom the
-     * body's coordinate (3 p + c for component c of point p). */
-    dealii::Triangulation<3>  tria;
-    dealii::DoFHandler<3>     dof_handler;
-    std::vector<unsigned int> coordinate_of_dof;
-
+    /** Format hdf5: fields/mesh.h5, every process its rows, with the
+     * bodies' points and cells and the obstacles' triangles. */
     void
-    make_dof_handler(const P1CellData &cells)
+    write_hdf5_mesh(const std::vector<double>       &obstacle_points,
+                    const std::vector<unsigned int> &obstacle_triangles)
     {
-      std::vector<dealii::Point<3>> vertices(cells.n_points);
-      for (unsigned int p = 0; p < cells.n_points; ++p)
-        for (unsigned int c = 0; c < 3; ++c)
-          vertices[p][c] = cells.reference_position[3 * p + c];
-      std::vector<dealii::CellData<3>> cell_list(cells.n_cells,
-                                                 dealii::CellData<3>(4));
-      for (unsigned int e = 0; e < cells.n_cells; ++e)
-        for (unsigned int a = 0; a < 4; ++a)
-          cell_list[e].vertices[a] = cells.point[a][e];
-      tria.create_triangulation(vertices, cell_list, dealii::SubCellData());
-      dof_handler.reinit(tria);
-      dof_handler.distribute_dofs(
-        dealii::FESystem<3>(dealii::FE_SimplexP<3>(1), 3));
-      coordinate_of_dof.resize(dof_handler.n_dofs());
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        for (const unsigned int a : cell->vertex_indices())
-          {
-            // The cells keep their order and vertices (checked, as the cell
-            // fields are written by cell number).
-            const unsigned int p = cell->vertex_index(a);
-            AssertThrow(p == cells.point[a][cell->active_cell_index()],
-                        dealii::ExcInternalError());
-            for (unsigned int c = 0; c < 3; ++c)
-              coordinate_of_dof[cell->vertex_dof_index(a, c)] = 3 * p + c;
-          }
+      xdmf.mesh_file = "fields/mesh.h5";
+      xdmf.fields    = snapshot_fields;
+      xdmf.meshes.clear();
+      const std::filesystem::path file = directory / xdmf.mesh_file;
+      Hdf5File                    mesh(file.string() + ".part");
+      for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
+        {
+          const P1CellData &cells = bodies.body(b).cell_data();
+          const Piece      &piece = pieces[b];
+          const std::string group = body_group(b);
+          mesh.write(
+            group + "/points",
+            cells.n_points,
+            3,
+            piece.point_rows.begin,
+            std::vector<double>(cells.reference_position.begin() +
+                                  3 * std::size_t(piece.point_rows.begin),
+                                cells.reference_position.begin() +
+                                  3 * std::size_t(piece.point_rows.end)));
+          std::vector<unsigned int> tetrahedra;
+          for (unsigned int e = piece.cells.begin; e < piece.cells.end; ++e)
+            for (unsigned int a = 0; a < 4; ++a)
+              tetrahedra.push_back(cells.point[a][cells.at(e)]);
+          mesh.write(
+            group + "/cells", cells.n_cells, 4, piece.cells.begin, tetrahedra);
+          xdmf.meshes.push_back(
+            {bodies.n_bodies() == 1 ? "body" : "body " + std::to_string(b + 1),
+             group,
+             cells.n_points,
+             cells.n_cells,
+             4,
+             true});
+        }
+      if (has_obstacles)
+        {
+          // Small, and the same on every process: the first writes them.
+          const std::size_t n_points    = obstacle_points.size() / 3,
+                            n_triangles = obstacle_triangles.size() / 3;
+          mesh.write("obstacles/points",
+                     n_points,
+                     3,
+                     0,
+                     rank == 0 ? obstacle_points : std::vector<double>());
+          mesh.write("obstacles/cells",
+                     n_triangles,
+                     3,
+                     0,
+                     rank == 0 ? obstacle_triangles :
+                                 std::vector<unsigned int>());
+          xdmf.meshes.push_back(
+            {"obstacles", "obstacles", n_points, n_triangles, 3, false});
+        }
+      mesh.close();
+      if (rank == 0)
+        std::filesystem::rename(file.string() + ".part", file);
     }
   };
 
@@ -195,19 +252,25 @@ namespace estep
     std::vector<unsigned int> triangles;
     self.bodies.obstacle_surface(points, triangles);
     self.has_obstacles = !triangles.empty();
-    if (self.has_obstacles && self.format == Format::vtu && self.rank == 0)
+    try
       {
-        const std::filesystem::path file =
-          self.directory / "fields" / "obstacles.vtu";
-        std::ofstream out(file);
-        VtuFile(points, triangles, 3).write(out, 0., 0, {}, {});
-        out.close();
-        if (!out)
-          throw std::runtime_error("Field output: cannot write <" +
-                                   file.string() + ">.");
+        if (self.format == Format::hdf5)
+          self.write_hdf5_mesh(points, triangles);
+        else if (self.has_obstacles && self.rank == 0)
+          {
+            const std::filesystem::path file =
+              self.directory / "fields" / "obstacles.vtu";
+            std::ofstream out(file);
+            VtuFile(points, triangles, 3).write(out, 0., 0, {}, {});
+            out.close();
+            if (!out)
+              throw std::runtime_error("cannot write <" + file.string() + ">");
+          }
       }
-    if (implementation->format == Format::hdf5)
-      start_mpi();
+    catch (const std::runtime_error &error)
+      {
+        throw std::runtime_error(field_output_message(error));
+      }
   }
 
 
@@ -217,8 +280,8 @@ namespace estep
   {
     const Implementation &self = *implementation;
     out.put(self.next_time);
-    out.put(static_cast<std::uint64_t>(self.pvd_records.size()));
-    for (const auto &[time, file] : self.pvd_records)
+    out.put(static_cast<std::uint64_t>(self.series.size()));
+    for (const auto &[time, file] : self.series)
       {
         out.put(time);
         out.put(file);
@@ -231,20 +294,26 @@ namespace estep
   FieldOutput::resume(StateReader &in)
   {
     Implementation &self = *implementation;
-    if (self.format == Format::hdf5)
-      throw std::runtime_error(
-        "Postprocessors/Field output/Format: an HDF5 series cannot be "
-        "resumed from a checkpoint; use vtu, or run from the start.");
-    start();
-    self.next_time = in.get<double>();
-    self.pvd_records.resize(in.get<std::uint64_t>());
-    for (auto &[time, file] : self.pvd_records)
+    self.next_time       = in.get<double>();
+    self.series.resize(in.get<std::uint64_t>());
+    for (auto &[time, file] : self.series)
       {
         time = in.get<double>();
         file = in.get_string();
       }
-    if (!self.pvd_records.empty() && self.rank == 0)
-      self.write_pvd();
+    if (!self.series.empty())
+      {
+        const bool hdf5_series =
+          std::filesystem::path(self.series[0].second).extension() == ".h5";
+        if (hdf5_series != (self.format == Format::hdf5))
+          throw std::runtime_error(
+            std::string("Postprocessors/Field output/Format: the checkpoint's "
+                        "series is in ") +
+            (hdf5_series ? "hdf5" : "vtu") + "; resume with that format.");
+      }
+    start();
+    if (!self.series.empty() && self.rank == 0)
+      self.write_series();
   }
 
 
@@ -256,9 +325,9 @@ namespace estep
   void
   FieldOutput::finish(const TimeLoopResult &result)
   {
-    if (result.status != RunStatus::failed && implementation->pvd_pending &&
+    if (result.status != RunStatus::failed && implementation->series_pending &&
         implementation->rank == 0)
-      implementation->write_pvd();
+      implementation->write_series();
   }
 
 
@@ -266,7 +335,7 @@ namespace estep
   bool
   FieldOutput::runs_on_every_rank() const
   {
-    return implementation->format == Format::vtu;
+    return true;
   }
 
 
@@ -274,9 +343,7 @@ namespace estep
   unsigned int
   FieldOutput::n_snapshots() const
   {
-    return implementation->format == Format::vtu ?
-             implementation->pvd_records.size() :
-             implementation->xdmf_entries.size();
+    return implementation->series.size();
   }
 
 
@@ -296,7 +363,7 @@ namespace estep
           {
             // A snapshot or the series file could not be written: the run
             // stops with status failed.
-            throw OutputFailed(error.what());
+            throw OutputFailed(field_output_message(error));
           }
         if (!(self.interval > 0.))
           {
@@ -316,98 +383,122 @@ namespace estep
     const unsigned int n        = n_snapshots();
     const unsigned int n_bodies = self.bodies.n_bodies();
     char               name[64];
-    Vector             q, v;
-    if (self.format == Format::vtu)
+    std::snprintf(name, sizeof(name), "solution-%05u", n);
+    const std::string         snapshot_name = name;
+    std::unique_ptr<Hdf5File> hdf5;
+    if (self.format == Format::hdf5)
+      hdf5 = std::make_unique<Hdf5File>(
+        (self.directory / "fields" / (snapshot_name + ".h5")).string());
+    if (hdf5)
+      hdf5->write_attribute("time", snapshot.t);
+    // In vtu, one file per body, written in place: a new file that the
+    // series lists only once it is complete. A file of an earlier run is
+    // removed first: renaming over it or truncating it would make ext4 flush
+    // the new one to disk (seconds per run on a busy disk).
+    std::vector<std::string> files;
+    Vector                   q, v;
+    for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        // One file per body, written in place: a new file that the series
-        // lists only once it is complete. A file of an earlier run is
-        // removed first: renaming over it or truncating it would make ext4
-        // flush the new one to disk (seconds per run on a busy disk).
-        std::vector<std::string> files;
-        for (unsigned int b = 0; b < n_bodies; ++b)
+        const ElasticBody           &body  = self.bodies.body(b);
+        const Implementation::Piece &piece = self.pieces[b];
+        self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
+        std::vector<double> displacement(q.begin(), q.end()),
+          velocity(v.begin(), v.end()), J, W, stress, von_mises;
+        for (unsigned int k = 0; k < displacement.size(); ++k)
+          displacement[k] -= body.cell_data().reference_position[k];
+        body.cell_fields(q, piece.cells, J, W);
+        body.cell_stresses(q, piece.cells, stress, von_mises);
+        std::vector<VtuFile::Field>
+          point_fields = {{"displacement", 3, &displacement},
+                          {"velocity", 3, &velocity}},
+          cell_fields  = {{"J", 1, &J},
+                          {"strain_energy_density", 1, &W},
+                          {"cauchy_stress", 9, &stress},
+                          {"von_mises_stress", 1, &von_mises}};
+        if (hdf5)
           {
-            const ElasticBody           &body  = self.bodies.body(b);
-            const Implementation::Piece &piece = self.pieces[b];
-            self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
-            std::vector<double> displacement(q.begin(), q.end()),
-              velocity(v.begin(), v.end()), J, W, stress, von_mises;
-            for (unsigned int k = 0; k < displacement.size(); ++k)
-              displacement[k] -= body.cell_data().reference_position[k];
-            body.cell_fields(q, piece.cells, J, W);
-            body.cell_stresses(q, piece.cells, stress, von_mises);
-            if (n_bodies == 1)
-              std::snprintf(name, sizeof(name), "solution-%05u", n);
-            else
-              std::snprintf(name, sizeof(name), "solution-%05u-%u", n, b + 1);
-            const std::string base = name;
-            std::vector<VtuFile::Field>
-              point_fields = {{"displacement", 3, &displacement},
-                              {"velocity", 3, &velocity}},
-              cell_fields  = {{"J", 1, &J},
-                              {"strain_energy_density", 1, &W},
-                              {"cauchy_stress", 9, &stress},
-                              {"von_mises_stress", 1, &von_mises}};
-            std::string                      file_name = base + ".vtu";
-            std::vector<std::vector<double>> piece_values;
-            if (self.ranks > 1)
-              {
-                // This process's piece: its points' values (the cell fields
-                // are its cells' already).
-                piece_values.reserve(point_fields.size());
-                for (VtuFile::Field &field : point_fields)
-                  {
-                    auto &values = piece_values.emplace_back();
-                    for (const unsigned int p : piece.points)
-                      for (unsigned int c = 0; c < field.n_components; ++c)
-                        values.push_back(
-                          (*field.values)[field.n_components * p + c]);
-                    field.values = &values;
-                  }
-                file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
-              }
-            const std::filesystem::path file =
-              self.directory / "fields" / file_name;
-            std::filesystem::remove(file);
-            std::ofstream out(file);
-            self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
-            out.close();
-            if (!out)
-              throw std::runtime_error("Field output: cannot write <" +
-                                       file.string() + ">.");
-            if (self.ranks > 1)
-              {
-                // The first process lists the pieces of all.
-                file_name = base + ".pvtu";
-                if (self.rank == 0)
-                  {
-                    std::vector<std::string> piece_files;
-                    for (unsigned int r = 0; r < self.ranks; ++r)
-                      piece_files.push_back(base + "-p" + std::to_string(r) +
-                                            ".vtu");
-                    std::ostringstream pvtu;
-                    VtuFile::write_parallel(pvtu,
-                                            piece_files,
-                                            point_fields,
-                                            cell_fields);
-                    write_file_atomically(
-                      (self.directory / "fields" / file_name).string(),
-                      pvtu.str());
-                  }
-              }
-            files.push_back(file_name);
+            // This process's rows: its share of the points, its cells.
+            const std::string group = body_group(b);
+            for (const VtuFile::Field &field : point_fields)
+              hdf5->write(group + "/" + field.name,
+                          body.cell_data().n_points,
+                          field.n_components,
+                          piece.point_rows.begin,
+                          std::vector<double>(
+                            field.values->begin() +
+                              field.n_components * piece.point_rows.begin,
+                            field.values->begin() +
+                              field.n_components * piece.point_rows.end));
+            for (const VtuFile::Field &field : cell_fields)
+              hdf5->write(group + "/" + field.name,
+                          body.n_cells(),
+                          field.n_components,
+                          piece.cells.begin,
+                          *field.values);
+            continue;
           }
-        std::string series_entry = "fields/" + files[0];
-        if (self.rank > 0)
+        const std::string                base      = n_bodies == 1 ?
+                                                       snapshot_name :
+                                                       snapshot_name + "-" + std::to_string(b + 1);
+        std::string                      file_name = base + ".vtu";
+        std::vector<std::vector<double>> piece_values;
+        if (self.ranks > 1)
           {
-            // The series is the first process's; the others count the
-            // snapshots alike.
-            self.pvd_records.emplace_back(snapshot.t, series_entry);
-            return;
+            // This process's piece: its points' values (the cell fields
+            // are its cells' already).
+            piece_values.reserve(point_fields.size());
+            for (VtuFile::Field &field : point_fields)
+              {
+                auto &values = piece_values.emplace_back();
+                for (const unsigned int p : piece.points)
+                  for (unsigned int c = 0; c < field.n_components; ++c)
+                    values.push_back(
+                      (*field.values)[field.n_components * p + c]);
+                field.values = &values;
+              }
+            file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
           }
-        if (n_bodies > 1 || self.has_obstacles)
+        const std::filesystem::path file =
+          self.directory / "fields" / file_name;
+        std::filesystem::remove(file);
+        std::ofstream out(file);
+        self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
+        out.close();
+        if (!out)
+          throw std::runtime_error("cannot write <" + file.string() + ">");
+        if (self.ranks > 1)
           {
-            // The bodies of one snapshot as a multiblock data set.
-            std::snprintf(name, sizeof(name), "solution-%05u.vtm", n);
+            // The first process lists the pieces of all.
+            file_name = base + ".pvtu";
+            if (self.rank == 0)
+              {
+                std::vector<std::string> piece_files;
+                for (unsigned int r = 0; r < self.ranks; ++r)
+                  piece_files.push_back(base + "-p" + std::to_string(r) +
+                                        ".vtu");
+                std::ostringstream pvtu;
+                VtuFile::write_parallel(pvtu,
+                                        piece_files,
+                                        point_fields,
+                                        cell_fields);
+                write_file_atomically(
+                  (self.directory / "fields" / file_name).string(), pvtu.str());
+              }
+          }
+        files.push_back(file_name);
+      }
+    std::string series_entry;
+    if (hdf5)
+      {
+        hdf5->close();
+        series_entry = "fields/" + snapshot_name + ".h5";
+      }
+    else if (n_bodies > 1 || self.has_obstacles)
+      {
+        // The bodies of one snapshot as a multiblock data set.
+        series_entry = "fields/" + snapshot_name + ".vtm";
+        if (self.rank == 0)
+          {
             std::ostringstream vtm;
             vtm << "<?xml version=\"1.0\"?>\n<VTKFile "
                    "type=\"vtkMultiBlockDataSet\" version=\"1.0\" "
@@ -419,66 +510,20 @@ namespace estep
               vtm << "    <DataSet index=\"" << n_bodies
                   << "\" name=\"obstacles\" file=\"obstacles.vtu\"/>\n";
             vtm << "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
-            write_file_atomically((self.directory / "fields" / name).string(),
+            write_file_atomically((self.directory / series_entry).string(),
                                   vtm.str());
-            series_entry = std::string("fields/") + name;
           }
-        self.pvd_records.emplace_back(snapshot.t, series_entry);
-        self.pvd_pending = true;
-        if (self.pvd_records.size() == 1 ||
-            std::chrono::steady_clock::now() - self.pvd_written >=
-              std::chrono::seconds(1))
-          self.write_pvd();
-        return;
       }
-
-    // HDF5/XDMF through deal.II's DataOut (one body).
-    const ElasticBody &body = self.bodies.body(0);
-    self.bodies.body_state(snapshot.q, snapshot.v, 0, q, v);
-    const std::vector<double> &X = body.cell_data().reference_position;
-    dealii::Vector<double>     displacement_vector(q.size()),
-      velocity_vector(q.size());
-    for (unsigned int k = 0; k < q.size(); ++k)
-      {
-        const unsigned int i   = self.coordinate_of_dof[k];
-        displacement_vector[k] = q[i] - X[i];
-        velocity_vector[k]     = v[i];
-      }
-    std::vector<double> J, W;
-    body.cell_fields(q, {0, body.n_cells()}, J, W);
-    dealii::Vector<double> cell_J(J.begin(), J.end()),
-      cell_W(W.begin(), W.end());
-    dealii::DataOut<3> data_out;
-    data_out.attach_dof_handler(self.dof_handler);
-    const std::vector<
-      dealii::DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(
-        3, dealii::DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(displacement_vector,
-                             std::vector<std::string>(3, "displacement"),
-                             dealii::DataOut<3>::type_dof_data,
-                             vector_field);
-    data_out.add_data_vector(velocity_vector,
-                             std::vector<std::string>(3, "velocity"),
-                             dealii::DataOut<3>::type_dof_data,
-                             vector_field);
-    data_out.add_data_vector(cell_J, "J", dealii::DataOut<3>::type_cell_data);
-    data_out.add_data_vector(cell_W,
-                             "strain_energy_density",
-                             dealii::DataOut<3>::type_cell_data);
-    data_out.build_patches(self.mapping, 1);
-    std::snprintf(name, sizeof(name), "fields/solution-%05u.h5", n);
-    dealii::DataOutBase::DataOutFilter filter(
-      dealii::DataOutBase::DataOutFilterFlags(true, true));
-    data_out.write_filtered_data(filter);
-    data_out.write_hdf5_parallel(filter,
-                                 (self.directory / name).string(),
-                                 MPI_COMM_SELF);
-    self.xdmf_entries.push_back(
-      data_out.create_xdmf_entry(filter, name, snapshot.t, MPI_COMM_SELF));
-    const std::string xdmf = (self.directory / "solution.xdmf").string();
-    data_out.write_xdmf_file(self.xdmf_entries, xdmf + ".part", MPI_COMM_SELF);
-    std::filesystem::rename(xdmf + ".part", xdmf);
+    else
+      series_entry = "fields/" + files[0];
+    self.series.emplace_back(snapshot.t, series_entry);
+    if (self.rank > 0)
+      return; // the series is the first process's; the others count alike
+    self.series_pending = true;
+    if (self.series.size() == 1 ||
+        std::chrono::steady_clock::now() - self.series_written >=
+          std::chrono::seconds(1))
+      self.write_series();
   }
 
 
@@ -499,8 +544,13 @@ namespace estep
         "Format",
         "vtu",
         dealii::Patterns::Selection("vtu|hdf5"),
-        "vtu: fields/solution-NNNNN.vtu and the time series solution.pvd; "
-        "hdf5: fields/solution-NNNNN.h5 and solution.xdmf.");
+        "vtu: fields/solution-NNNNN.vtu (one file per body, joined by a .vtm "
+        "file; on several MPI processes one piece per process, joined by a "
+        ".pvtu file) and the time series solution.pvd. hdf5: the mesh in "
+        "fields/mesh.h5, the fields of each snapshot in "
+        "fields/solution-NNNNN.h5 (a group per body: body1, body2, ...; "
+        "written by every process together), and the time series "
+        "solution.xdmf.");
       prm.leave_subsection();
     }
 
@@ -518,12 +568,6 @@ namespace estep
         throw std::runtime_error("Postprocessors/List: field output: the "
                                  "system <" +
                                  system.name() + "> has no fields to write.");
-      if (format == "hdf5" && bodies->n_bodies() > 1)
-        throw std::runtime_error(
-          "Postprocessors/Field output/Format: hdf5 writes one body, and the "
-          "system <" +
-          system.name() + "> has " + std::to_string(bodies->n_bodies()) +
-          "; choose vtu.");
       if (!(interval > 0.))
         throw std::runtime_error(
           "Postprocessors/Field output/Interval: must be positive.");

@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 
 namespace estep
@@ -188,6 +189,27 @@ namespace estep
     for (const std::string &piece : pieces)
       out << "<Piece Source=\"" << piece << "\"/>\n";
     out << "</PUnstructuredGrid>\n</VTKFile>\n";
+    if (!out)
+      throw std::runtime_error("VtuFile: writing the file failed.");
+  }
+
+
+
+  void
+  VtuFile::write_series(
+    std::ostream                                      &out,
+    const std::vector<std::pair<double, std::string>> &snapshots)
+  {
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (const auto &[time, file] : snapshots)
+      {
+        char time_text[32];
+        std::snprintf(time_text, sizeof(time_text), "%.17g", time);
+        out << "<DataSet timestep=\"" << time_text
+            << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
+      }
+    out << "</Collection>\n</VTKFile>\n";
     if (!out)
       throw std::runtime_error("VtuFile: writing the file failed.");
   }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Checkpoints and --resume: a run killed at any instant (SIGKILL) and resumed ends exactly as
-# the uninterrupted run, for energy-stepping with and without contact, Newmark and the
+# the uninterrupted run, for energy-stepping with and without contact (with field output in vtu
+# and in HDF5, whose files and series equal those of the uninterrupted run), Newmark and the
 # energy-momentum method; the SUNDIALS methods resume from the checkpoint's exact state and
 # agree within their tolerance; SIGTERM leaves a final checkpoint; a damaged checkpoint or
 # changed parameters are refused in one line.
@@ -28,6 +29,9 @@ same_run() {
   if [[ -d $1/fields ]]; then
     diff -rq "$1/fields" "$2/fields" > /dev/null || fail "$3: the field snapshots differ"
   fi
+  for f in solution.pvd solution.xdmf; do
+    [[ ! -f $1/$f ]] || cmp -s "$1/$f" "$2/$f" || fail "$3: $f differs from the uninterrupted run"
+  done
   diff -q <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") \
     > /dev/null || fail "$3: summary.json differs: $(diff <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") | head -4)"
 }
@@ -117,6 +121,10 @@ check_exact "impenetrable balls" "$files/ball_collision_impenetrable.prm" \
 check_exact "penalty balls" "$files/ball_collision.prm" \
   --set "Output directory=run" --set "Time integration/End time=0.12" \
   --set "Output/Checkpoint interval=0.01"
+check_exact "hdf5 field output" "$files/quick_start.prm" \
+  --set "Output directory=run" --set "Time integration/End time=2" \
+  --set "Output/Checkpoint interval=0.25" --set "Postprocessors/Field output/Interval=0.25" \
+  --set "Postprocessors/Field output/Format=hdf5"
 check_exact "explicit newmark" "$files/spinning_cube_newmark_0.0082.prm" \
   --set "Output directory=run" --set "Time integration/End time=20" \
   --set "Output/Checkpoint interval=1"

@@ -29,9 +29,15 @@ namespace estep
    * disk, which ext4 makes flush a file renamed over another). On several MPI
    * processes each writes its piece of a body, the cells of its blocks
    * (solution-NNNNN-pR.vtu for process R), and the first the
-   * solution-NNNNN.pvtu that joins them, which the series lists. Format "hdf5":
-   * fields/solution-NNNNN.h5 with the time series solution.xdmf (one body;
-   * through MPI, which start() starts if needed).
+   * solution-NNNNN.pvtu that joins them, which the series lists.
+   *
+   * Format "hdf5": the bodies' points and cells (and the obstacles'
+   * triangles) once in fields/mesh.h5, each snapshot's fields in
+   * fields/solution-NNNNN.h5, a group per body (body1, body2, ...) with the
+   * same fields as in vtu, stored as doubles, the cell fields per cell; and
+   * the time series solution.xdmf. On several MPI processes every process
+   * writes its rows into the same files (its cells, a share of the points):
+   * their datasets are those of one process, to the last bit.
    */
   class FieldOutput : public Postprocessor
   {
@@ -50,7 +56,8 @@ namespace estep
 
     ~FieldOutput() override;
 
-    /** Creates the folder fields/. */
+    /** Creates the folder fields/, and writes the obstacles (vtu) or the
+     * meshes (hdf5). */
     void
     start() override;
 
@@ -58,8 +65,8 @@ namespace estep
     void
     save_state(StateWriter &out) const override;
 
-    /** Starts again, with the series of the checkpoint (VTU only: an HDF5
-     * series cannot be resumed). */
+    /** Starts again, with the series of the checkpoint (which must be of
+     * the same format). */
     void
     resume(StateReader &in) override;
 
@@ -72,7 +79,7 @@ namespace estep
     void
     finish(const TimeLoopResult &result) override;
 
-    /** With format vtu: every MPI process writes its piece of each body. */
+    /** Every MPI process writes its piece of each body. */
     bool
     runs_on_every_rank() const override;
 

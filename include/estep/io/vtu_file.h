@@ -3,6 +3,7 @@
 
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace estep
@@ -62,6 +63,12 @@ namespace estep
                    const std::vector<std::string> &pieces,
                    const std::vector<Field>       &point_fields,
                    const std::vector<Field>       &cell_fields);
+
+    /** Writes the .pvd file (a VTK collection, ParaView's time series) of
+     * the @p snapshots: the time and the file of each. */
+    static void
+    write_series(std::ostream                                      &out,
+                 const std::vector<std::pair<double, std::string>> &snapshots);
 
     /** The encoding of a data array: zlib (level 1) and base64, with VTK's
      * block header. */
