@@ -111,28 +111,25 @@ namespace estep
                              "> out of range in <" + path + ">");
     // One column is stored as a one-dimensional dataset.
     const int     n_dimensions = n_columns == 1 ? 1 : 2;
-    const hsize_t size[2] = {n_rows, n_columns};
-    const Handle  space(H5Screate_simple(n_dimensions, size, nullptr), H5Sclose);
+    const hsize_t size[2]      = {n_rows, n_columns};
+    const Handle space(H5Screate_simple(n_dimensions, size, nullptr), H5Sclose);
     // The groups on the way, and the dataset, without the times of their
     // making: two files of the same data are the same bytes.
     for (std::size_t slash = name.find('/'); slash != std::string::npos;
          slash             = name.find('/', slash + 1))
       {
-        const std::string group = name.substr(0, slash);
-        if (H5Lexists(file, group.c_str(), H5P_DEFAULT) > 0)
+                    const std::string group = name.substr(0, slash);
+                    if (H5Lexists(file, group.c_str(), H5P_DEFAULT) > 0)
           continue;
         const Handle properties(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
-        H5Pset_obj_track_times(properties, false);
-        const Handle made(H5Gcreate2(file,
-                                     group.c_str(),
-                                     H5P_DEFAULT,
-                                     properties,
-                                     H5P_DEFAULT),
-                          H5Gclose);
+                    H5Pset_obj_track_times(properties, false);
+                    const Handle made(
+          H5Gcreate2(file, group.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT),
+          H5Gclose);
       }
     const Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     H5Pset_obj_track_times(properties, false);
-    const Handle dataset(H5Dcreate2(file,
+    const Handle  dataset(H5Dcreate2(file,
                                     name.c_str(),
                                     indices ? H5T_STD_U32LE : H5T_IEEE_F64LE,
                                     space,
@@ -141,24 +138,25 @@ namespace estep
                                     H5P_DEFAULT),
                          H5Dclose);
     const hsize_t start[2] = {first_row, 0}, count[2] = {my_rows, n_columns};
-    const Handle  memory(H5Screate_simple(n_dimensions, count, nullptr), H5Sclose);
+    const Handle  memory(H5Screate_simple(n_dimensions, count, nullptr),
+                        H5Sclose);
     if (my_rows == 0)
       {
         H5Sselect_none(space);
         H5Sselect_none(memory);
       }
     else
-      H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+      H5Sselect_hyperslab(
+        space, H5S_SELECT_SET, start, nullptr, count, nullptr);
     const Handle transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
     if (parallel)
       H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE);
-    if (dataset < 0 ||
-        H5Dwrite(dataset,
-                 indices ? H5T_NATIVE_UINT : H5T_NATIVE_DOUBLE,
-                 memory,
-                 space,
-                 transfer,
-                 values) < 0)
+    if (dataset < 0 || H5Dwrite(dataset,
+                                indices ? H5T_NATIVE_UINT : H5T_NATIVE_DOUBLE,
+                                memory,
+                                space,
+                                transfer,
+                                values) < 0)
       throw std::runtime_error("cannot write <" + name +
                                "> into the HDF5 file <" + path + ">");
   }
@@ -169,13 +167,10 @@ namespace estep
   Hdf5File::write_attribute(const std::string &name, const double value)
   {
     const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-    const Handle attribute(H5Acreate2(file,
-                                      name.c_str(),
-                                      H5T_IEEE_F64LE,
-                                      space,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT),
-                           H5Aclose);
+    const Handle attribute(
+      H5Acreate2(
+        file, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
     if (attribute < 0 || H5Awrite(attribute, H5T_NATIVE_DOUBLE, &value) < 0)
       throw std::runtime_error("cannot write the attribute <" + name +
                                "> into the HDF5 file <" + path + ">");

@@ -99,8 +99,7 @@ namespace estep
                      << attribute_type(field.n_components) << "\" Center=\""
                      << (field.on_cells ? "Cell" : "Node") << "\">\n"
                      << indent << "    "
-                     << data_item(field.on_cells ? mesh.n_cells :
-                                                   mesh.n_points,
+                     << data_item(field.on_cells ? mesh.n_cells : mesh.n_points,
                                   field.n_components,
                                   false,
                                   snapshot_file + ":/" + mesh.group + "/" +
