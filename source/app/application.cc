@@ -694,9 +694,14 @@ namespace estep
                                return !postprocessor->runs_on_every_rank();
                              }),
               postprocessors.end());
+          // Those that run on every rank first, as Checkpoint::resume()
+          // does: their collective calls meet before an output of the first
+          // rank alone may fail.
           if (!checkpoint)
-            for (const auto &postprocessor : postprocessors)
-              postprocessor->start();
+            for (const bool on_every_rank : {true, false})
+              for (const auto &postprocessor : postprocessors)
+                if (postprocessor->runs_on_every_rank() == on_every_rank)
+                  postprocessor->start();
         }
       catch (const std::runtime_error &error)
         {
@@ -719,8 +724,9 @@ namespace estep
                                                          resumed_state);
       if (result.status == RunStatus::failed && rank_count() > 1)
         {
-          // An output of the first rank failed during the run; the other
-          // ranks, which know nothing of it, are still stepping.
+          // An output failed during the run, of the first rank or of one
+          // that runs on every rank; other ranks may know nothing of it and
+          // still be stepping.
           report_output_failure(summary_file, record, result.message);
           end_all_ranks(exit_failed);
         }

@@ -64,7 +64,10 @@ namespace estep
 
   Hdf5File::~Hdf5File()
   {
-    if (file >= 0)
+    // Left after an error: on several processes closing is collective, and
+    // the others, which may not have met the error, may never come to it (a
+    // failed output ends every process).
+    if (file >= 0 && !parallel)
       H5Fclose(file);
   }
 

@@ -2,8 +2,9 @@
 # MPI: a run gives the same trajectory to the last bit on 1 process and on 2 MPI processes (of 1
 # and of 2 threads): the ranks share the blocks of cells, and every rank adds the blocks' sums in
 # block order. With and without contact, and with an implicit method. A run on 2 processes ended by SIGTERM resumes on 1 to
-# the same end, and one on 1 resumes on 2. Field output writes a piece per process. An output
-# that fails mid-run ends every process. A system without elastic cells, or with fewer cells
+# the same end, and one on 1 resumes on 2. Field output writes a piece per process in vtu, and
+# the same datasets as one process in HDF5. An output that fails mid-run, or at the start, ends
+# every process. A system without elastic cells, or with fewer cells
 # than processes, is refused; so is a mesh the first process (which alone builds it) cannot read.
 # Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
@@ -63,32 +64,53 @@ same_on_ranks ida_one_block "$files/spinning_cube_ida_bdf.prm" \
   --set "Postprocessors/List=history"
 
 # Field output in HDF5: every process writes its rows into the same files, which hold the
-# same datasets, to the last bit, as those of one process, and the same series.
-h5=(--set "Elastic body/Mesh/Subdivisions=6" --set "Time integration/End time=0.5"
-    --set "Postprocessors/List=history, field output"
-    --set "Postprocessors/Field output/Format=hdf5" --set "Postprocessors/Field output/Interval=0.25")
-"$ESTEP" "$files/spinning_cube.prm" "${h5[@]}" --threads 1 --set "Output directory=h5-1" > h5-1.txt 2>&1 ||
-  fail "HDF5 output on 1 process: $(tail -2 h5-1.txt)"
-"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" "${h5[@]}" --threads 1 --set "Output directory=h5-2" \
-  > h5-2.txt 2>&1 || fail "HDF5 output on 2 processes: $(tail -2 h5-2.txt)"
-cmp -s h5-1/solution.xdmf h5-2/solution.xdmf || fail "solution.xdmf on 2 processes differs from 1 process"
-/usr/bin/python3 - << 'PY' || fail "HDF5 output on 2 processes differs from 1 process"
-import h5py, numpy, pathlib
-one = sorted(pathlib.Path("h5-1/fields").glob("*.h5"))
-two = sorted(pathlib.Path("h5-2/fields").glob("*.h5"))
-assert len(one) == 4 and [p.name for p in one] == [p.name for p in two], (one, two)
+# same datasets, to the last bit, as those of one process, and the same series. The cube of
+# 5,184 cells (6 blocks, 3 per process), and the ball drop (one block, which the second process
+# writes alone: the first writes no cell, but points and the obstacle's rows).
+h5=(--set "Postprocessors/List=history, field output" --set "Postprocessors/Field output/Format=hdf5")
+# h5_on_ranks NAME SNAPSHOTS ARGS...
+h5_on_ranks() {
+  local name=$1 snapshots=$2
+  shift 2
+  "$ESTEP" "$@" "${h5[@]}" --threads 1 --set "Output directory=$name-1" > "$name-1.txt" 2>&1 ||
+    fail "HDF5 output of $name on 1 process: $(tail -2 "$name-1.txt")"
+  "${mpi[@]}" "$ESTEP" "$@" "${h5[@]}" --threads 1 --set "Output directory=$name-2" \
+    > "$name-2.txt" 2>&1 || fail "HDF5 output of $name on 2 processes: $(tail -2 "$name-2.txt")"
+  cmp -s "$name-1/solution.xdmf" "$name-2/solution.xdmf" ||
+    fail "$name: solution.xdmf on 2 processes differs from 1 process"
+  /usr/bin/python3 - "$name" "$snapshots" << 'PY' || fail "$name: HDF5 output on 2 processes differs from 1 process"
+import h5py, numpy, pathlib, sys
+name, snapshots = sys.argv[1], int(sys.argv[2])
+one = sorted(pathlib.Path(f"{name}-1/fields").glob("*.h5"))
+two = sorted(pathlib.Path(f"{name}-2/fields").glob("*.h5"))
+assert len(one) == snapshots + 1 and [p.name for p in one] == [p.name for p in two], (one, two)
+def datasets(h5):
+    names = []
+    h5.visit(lambda n: names.append(n) if isinstance(h5[n], h5py.Dataset) else None)
+    return names
 n = 0
 for a, b in zip(one, two):
     with h5py.File(a) as x, h5py.File(b) as y:
         assert dict(x.attrs) == dict(y.attrs), a.name
-        names = []
-        x.visit(lambda name: names.append(name) if isinstance(x[name], h5py.Dataset) else None)
-        assert names, a.name
-        for name in names:
-            assert x[name].dtype == y[name].dtype and numpy.array_equal(x[name][:], y[name][:]), (a.name, name)
+        assert datasets(x) and datasets(x) == datasets(y), (a.name, datasets(x), datasets(y))
+        for d in datasets(x):
+            assert x[d].dtype == y[d].dtype and numpy.array_equal(x[d][:], y[d][:]), (a.name, d)
             n += 1
-print(f"HDF5 on 2 processes: {len(two)} files, {n} datasets, equal to those of 1 process")
+print(f"HDF5 output of {name} on 2 processes: {len(two)} files, {n} datasets, equal to those of 1 process")
 PY
+}
+h5_on_ranks h5-cube 3 "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=6" \
+  --set "Time integration/End time=0.5" --set "Postprocessors/Field output/Interval=0.25"
+h5_on_ranks h5-drop 3 "$files/scene_ball_drop.prm" --set "Time integration/End time=0.05" \
+  --set "Postprocessors/Field output/Interval=0.025"
+
+# An output of the first process alone that cannot start (history.csv is a directory) while
+# every process starts HDF5 output: one message, exit code 4, no process left waiting.
+mkdir -p blocked/history.csv/x
+timeout 120 "${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" "${h5[@]}" --set "Output directory=blocked" \
+  --set "Elastic body/Mesh/Subdivisions=6" > blocked.txt 2>&1
+rc=$?
+[[ $rc == 4 ]] || fail "an output that cannot start on 2 processes with HDF5 output: exit code $rc, expected 4"
 
 # The colliding balls during their contact (about 3,000 cells per ball, 3 blocks each).
 balls=("$files/ball_collision.prm" --set "Colliding balls/Mesh size=0.2"

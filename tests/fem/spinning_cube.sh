@@ -99,7 +99,7 @@ else:
                          "cauchy_stress", "von_mises_stress"):
                 ours, theirs = h5["body1/" + name][:].ravel(), numpy.array(array(name))
                 scale = max(numpy.abs(ours).max(), 1e-300)
-                if ours.shape != theirs.shape or numpy.abs(ours - theirs).max() > 1e-6 * scale:
+                if ours.shape != theirs.shape or not numpy.abs(ours - theirs).max() <= 1e-6 * scale:
                     bad.append(f"HDF5 snapshot {k}: {name} differs from the vtu file")
     items = list(ET.parse("h5/solution.xdmf").getroot().iter("DataItem"))
     print(f"HDF5 output: the mesh and 6 fields of 2 snapshots as in the vtu files, "

@@ -28,7 +28,9 @@ namespace estep
     /** Creates @p path, removing a file of that name first. */
     explicit Hdf5File(const std::string &path);
 
-    /** Closes the file if close() was not called (errors are ignored). */
+    /** Closes the file if close() was not called, on one process (errors
+     * are ignored); on several it is left open: this is an error path, and
+     * closing is collective. */
     ~Hdf5File();
 
     Hdf5File(const Hdf5File &) = delete;
