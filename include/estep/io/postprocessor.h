@@ -62,7 +62,10 @@ namespace estep
      * on the first alone. Such a postprocessor must not call what the
      * processes compute together (MechanicalSystem::energy(),
      * TimeIntegrator::dense_output(); dense_state() is fine), and only the
-     * first process's state goes into checkpoints. The default: false.
+     * first process's state goes into checkpoints. It may make collective
+     * calls of its own (HDF5 output writes one file together): those that
+     * run on every rank are started, resumed and called in the same order
+     * on every process, and start before the others. The default: false.
      */
     virtual bool
     runs_on_every_rank() const;
