@@ -19,7 +19,7 @@ namespace estep
 {
   namespace
   {
-    /** The fields of a snapshot, in this order. */
+    /** The fields of a snapshot, in the order write() writes them. */
     const std::vector<XdmfSeries::Field> snapshot_fields = {
       {"displacement", 3, false},
       {"velocity", 3, false},
@@ -387,10 +387,11 @@ namespace estep
     const std::string         snapshot_name = name;
     std::unique_ptr<Hdf5File> hdf5;
     if (self.format == Format::hdf5)
-      hdf5 = std::make_unique<Hdf5File>(
-        (self.directory / "fields" / (snapshot_name + ".h5")).string());
-    if (hdf5)
-      hdf5->write_attribute("time", snapshot.t);
+      {
+        hdf5 = std::make_unique<Hdf5File>(
+          (self.directory / "fields" / (snapshot_name + ".h5")).string());
+        hdf5->write_attribute("time", snapshot.t);
+      }
     // In vtu, one file per body, written in place: a new file that the
     // series lists only once it is complete. A file of an earlier run is
     // removed first: renaming over it or truncating it would make ext4 flush
