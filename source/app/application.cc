@@ -694,14 +694,9 @@ namespace estep
                                return !postprocessor->runs_on_every_rank();
                              }),
               postprocessors.end());
-          // Those that run on every rank first, as Checkpoint::resume()
-          // does: their collective calls meet before an output of the first
-          // rank alone may fail.
           if (!checkpoint)
-            for (const bool on_every_rank : {true, false})
-              for (const auto &postprocessor : postprocessors)
-                if (postprocessor->runs_on_every_rank() == on_every_rank)
-                  postprocessor->start();
+            for (const std::size_t i : start_order(postprocessors))
+              postprocessors[i]->start();
         }
       catch (const std::runtime_error &error)
         {

@@ -265,18 +265,17 @@ namespace estep
                                std::to_string(postprocessor_states.size()) +
                                " postprocessors, the run " +
                                std::to_string(postprocessors.size()) + ".");
-    for (const bool on_every_rank : {true, false})
-      for (std::size_t i = 0; i < postprocessors.size(); ++i)
-        {
-          if (postprocessors[i]->runs_on_every_rank() != on_every_rank ||
-              (only_those_on_every_rank && !on_every_rank))
-            continue;
-          StateReader reader(postprocessor_states[i]);
-          postprocessors[i]->resume(reader);
-          if (!reader.at_end())
-            throw std::runtime_error(
-              "The checkpoint <" + file +
-              ">: a postprocessor's state does not match this build.");
-        }
+    for (const std::size_t i : start_order(postprocessors))
+      {
+        if (only_those_on_every_rank &&
+            !postprocessors[i]->runs_on_every_rank())
+          continue;
+        StateReader reader(postprocessor_states[i]);
+        postprocessors[i]->resume(reader);
+        if (!reader.at_end())
+          throw std::runtime_error(
+            "The checkpoint <" + file +
+            ">: a postprocessor's state does not match this build.");
+      }
   }
 } // namespace estep

@@ -19,7 +19,7 @@ namespace estep
 {
   namespace
   {
-    /** The fields of a snapshot, in the order write() writes them. */
+    /** The fields of a snapshot: of every body in vtu and in HDF5. */
     const std::vector<XdmfSeries::Field> snapshot_fields = {
       {"displacement", 3, false},
       {"velocity", 3, false},
@@ -409,13 +409,16 @@ namespace estep
           displacement[k] -= body.cell_data().reference_position[k];
         body.cell_fields(q, piece.cells, J, W);
         body.cell_stresses(q, piece.cells, stress, von_mises);
-        std::vector<VtuFile::Field>
-          point_fields = {{"displacement", 3, &displacement},
-                          {"velocity", 3, &velocity}},
-          cell_fields  = {{"J", 1, &J},
-                          {"strain_energy_density", 1, &W},
-                          {"cauchy_stress", 9, &stress},
-                          {"von_mises_stress", 1, &von_mises}};
+        // In the order of snapshot_fields.
+        const std::vector<double> *values[] = {
+          &displacement, &velocity, &J, &W, &stress, &von_mises};
+        std::vector<VtuFile::Field> point_fields, cell_fields;
+        for (unsigned int i = 0; i < snapshot_fields.size(); ++i)
+          {
+            const XdmfSeries::Field &field = snapshot_fields[i];
+            (field.on_cells ? cell_fields : point_fields)
+              .push_back({field.name, field.n_components, values[i]});
+          }
         if (hdf5)
           {
             // This process's rows: its share of the points, its cells.

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <type_traits>
 
 namespace estep
 {
@@ -74,62 +75,45 @@ namespace estep
 
 
   void
-  Hdf5File::write(const std::string         &name,
-                  const std::size_t          n_rows,
-                  const unsigned int         n_columns,
-                  const std::size_t          first_row,
-                  const std::vector<double> &values)
+  Hdf5File::make_groups_of(const std::string &name)
   {
-    write_rows(
-      name, n_rows, n_columns, first_row, values.size(), values.data(), false);
-  }
-
-
-
-  void
-  Hdf5File::write(const std::string               &name,
-                  const std::size_t                n_rows,
-                  const unsigned int               n_columns,
-                  const std::size_t                first_row,
-                  const std::vector<unsigned int> &values)
-  {
-    write_rows(
-      name, n_rows, n_columns, first_row, values.size(), values.data(), true);
-  }
-
-
-
-  void
-  Hdf5File::write_rows(const std::string &name,
-                       const std::size_t  n_rows,
-                       const unsigned int n_columns,
-                       const std::size_t  first_row,
-                       const std::size_t  n_values,
-                       const void        *values,
-                       const bool         indices)
-  {
-    const hsize_t my_rows = n_values / n_columns;
-    if (my_rows * n_columns != n_values || first_row + my_rows > n_rows)
-      throw std::logic_error("Hdf5File: rows of <" + name +
-                             "> out of range in <" + path + ">");
-    // One column is stored as a one-dimensional dataset.
-    const int     n_dimensions = n_columns == 1 ? 1 : 2;
-    const hsize_t size[2]      = {n_rows, n_columns};
-    const Handle space(H5Screate_simple(n_dimensions, size, nullptr), H5Sclose);
-    // The groups on the way, and the dataset, without the times of their
-    // making: two files of the same data are the same bytes.
-    for (std::size_t slash = name.find('/'); slash != std::string::npos;
-         slash             = name.find('/', slash + 1))
+    // Without the times of their making, as the datasets: two files of the
+    // same data are the same bytes.
+    std::size_t slash = name.find('/');
+    while (slash != std::string::npos)
       {
-                    const std::string group = name.substr(0, slash);
-                    if (H5Lexists(file, group.c_str(), H5P_DEFAULT) > 0)
+        const std::string group = name.substr(0, slash);
+        slash                   = name.find('/', slash + 1);
+        if (H5Lexists(file, group.c_str(), H5P_DEFAULT) > 0)
           continue;
         const Handle properties(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
-                    H5Pset_obj_track_times(properties, false);
-                    const Handle made(
+        H5Pset_obj_track_times(properties, false);
+        const Handle made(
           H5Gcreate2(file, group.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT),
           H5Gclose);
       }
+  }
+
+
+
+  template <typename T>
+  void
+  Hdf5File::write(const std::string    &name,
+                  const std::size_t     n_rows,
+                  const unsigned int    n_columns,
+                  const std::size_t     first_row,
+                  const std::vector<T> &values)
+  {
+    constexpr bool indices = std::is_same_v<T, unsigned int>;
+    static_assert(indices || std::is_same_v<T, double>);
+    const hsize_t my_rows = values.size() / n_columns;
+    if (my_rows * n_columns != values.size() || first_row + my_rows > n_rows)
+      throw std::logic_error("Hdf5File: rows of <" + name +
+                             "> out of range in <" + path + ">");
+    const int     n_dimensions = n_columns == 1 ? 1 : 2;
+    const hsize_t size[2]      = {n_rows, n_columns};
+    const Handle space(H5Screate_simple(n_dimensions, size, nullptr), H5Sclose);
+    make_groups_of(name);
     const Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     H5Pset_obj_track_times(properties, false);
     const Handle  dataset(H5Dcreate2(file,
@@ -159,10 +143,25 @@ namespace estep
                                 memory,
                                 space,
                                 transfer,
-                                values) < 0)
+                                values.data()) < 0)
       throw std::runtime_error("cannot write <" + name +
                                "> into the HDF5 file <" + path + ">");
   }
+
+
+
+  template void
+  Hdf5File::write(const std::string &,
+                  std::size_t,
+                  unsigned int,
+                  std::size_t,
+                  const std::vector<double> &);
+  template void
+  Hdf5File::write(const std::string &,
+                  std::size_t,
+                  unsigned int,
+                  std::size_t,
+                  const std::vector<unsigned int> &);
 
 
 

@@ -4,6 +4,7 @@
 #include <estep/io/postprocessor.h>
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 
 namespace estep
@@ -52,6 +53,19 @@ namespace estep
   Postprocessor::final_report() const
   {
     return "";
+  }
+
+
+
+  std::vector<std::size_t>
+  start_order(const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
+  {
+    std::vector<std::size_t> order(postprocessors.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_partition(order.begin(), order.end(), [&](const std::size_t i) {
+      return postprocessors[i]->runs_on_every_rank();
+    });
+    return order;
   }
 
 

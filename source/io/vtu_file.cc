@@ -3,7 +3,7 @@
 #include <zlib.h>
 
 #include <cstdint>
-#include <cstdio>
+#include <iomanip>
 #include <stdexcept>
 
 namespace estep
@@ -201,14 +201,11 @@ namespace estep
     const std::vector<std::pair<double, std::string>> &snapshots)
   {
     out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+        << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
+        << std::setprecision(17);
     for (const auto &[time, file] : snapshots)
-      {
-        char time_text[32];
-        std::snprintf(time_text, sizeof(time_text), "%.17g", time);
-        out << "<DataSet timestep=\"" << time_text
-            << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
-      }
+      out << "<DataSet timestep=\"" << time
+          << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
     out << "</Collection>\n</VTKFile>\n";
     if (!out)
       throw std::runtime_error("VtuFile: writing the file failed.");

@@ -1,6 +1,6 @@
 #include <estep/io/xdmf_series.h>
 
-#include <cstdio>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -50,22 +50,20 @@ namespace estep
     const std::vector<std::pair<double, std::string>> &snapshots) const
   {
     std::ostringstream xdmf;
-    xdmf << "<?xml version=\"1.0\" ?>\n"
+    xdmf << std::setprecision(17) << "<?xml version=\"1.0\" ?>\n"
          << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
          << "<Xdmf Version=\"2.0\">\n  <Domain>\n"
          << "    <Grid Name=\"series\" GridType=\"Collection\" "
             "CollectionType=\"Temporal\">\n";
     for (const auto &[time, snapshot_file] : snapshots)
       {
-        char time_text[32];
-        std::snprintf(time_text, sizeof(time_text), "%.17g", time);
         std::string indent = "      ";
         if (meshes.size() > 1)
           {
             xdmf << indent
                  << "<Grid Name=\"bodies\" GridType=\"Collection\" "
                     "CollectionType=\"Spatial\">\n"
-                 << indent << "  <Time Value=\"" << time_text << "\"/>\n";
+                 << indent << "  <Time Value=\"" << time << "\"/>\n";
             indent += "  ";
           }
         for (const Mesh &mesh : meshes)
@@ -73,7 +71,7 @@ namespace estep
             xdmf << indent << "<Grid Name=\"" << mesh.name
                  << "\" GridType=\"Uniform\">\n";
             if (meshes.size() == 1)
-              xdmf << indent << "  <Time Value=\"" << time_text << "\"/>\n";
+              xdmf << indent << "  <Time Value=\"" << time << "\"/>\n";
             xdmf << indent << "  <Topology TopologyType=\""
                  << (mesh.points_per_cell == 4 ? "Tetrahedron" : "Triangle")
                  << "\" NumberOfElements=\"" << mesh.n_cells << "\">\n"

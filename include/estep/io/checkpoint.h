@@ -56,9 +56,8 @@ namespace estep
     /** Let the postprocessors resume their outputs (once the output
      * directory is ready): all of them, or, if @p only_those_on_every_rank,
      * those that run on every MPI process (see
-     * Postprocessor::runs_on_every_rank()), as the other processes do. Those
-     * resume first, on every process in the same order: their collective
-     * calls meet before an output of the first process alone may fail. */
+     * Postprocessor::runs_on_every_rank()), as the other processes do; in
+     * start_order(). */
     void
     resume(const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
            const bool only_those_on_every_rank = false) const;

@@ -41,22 +41,17 @@ namespace estep
      * Writes the dataset @p name ("group/name" makes the group) of
      * @p n_rows rows of @p n_columns values, of which this process gives rows
      * [first_row, first_row + values.size() / n_columns), row-major.
-     * Doubles are stored as 64-bit IEEE numbers, indices as 32-bit unsigned
-     * integers.
+     * T is double (stored as 64-bit IEEE numbers) or unsigned int (indices,
+     * stored as 32-bit unsigned integers). One column makes a
+     * one-dimensional dataset.
      */
+    template <typename T>
     void
-    write(const std::string         &name,
-          const std::size_t          n_rows,
-          const unsigned int         n_columns,
-          const std::size_t          first_row,
-          const std::vector<double> &values);
-
-    void
-    write(const std::string               &name,
-          const std::size_t                n_rows,
-          const unsigned int               n_columns,
-          const std::size_t                first_row,
-          const std::vector<unsigned int> &values);
+    write(const std::string    &name,
+          const std::size_t     n_rows,
+          const unsigned int    n_columns,
+          const std::size_t     first_row,
+          const std::vector<T> &values);
 
     /** A double attribute @p name of the file (e.g. the time). */
     void
@@ -67,14 +62,9 @@ namespace estep
     close();
 
   private:
+    /** Makes the groups of the path @p name that do not exist yet. */
     void
-    write_rows(const std::string &name,
-               const std::size_t  n_rows,
-               const unsigned int n_columns,
-               const std::size_t  first_row,
-               const std::size_t  n_values,
-               const void        *values,
-               const bool         indices);
+    make_groups_of(const std::string &name);
 
     std::string  path;
     std::int64_t file = -1; // an hid_t, kept out of this header

@@ -65,7 +65,8 @@ namespace estep
      * first process's state goes into checkpoints. It may make collective
      * calls of its own (HDF5 output writes one file together): those that
      * run on every rank are started, resumed and called in the same order
-     * on every process, and start before the others. The default: false.
+     * on every process, and start before the others (start_order()). The
+     * default: false.
      */
     virtual bool
     runs_on_every_rank() const;
@@ -108,6 +109,16 @@ namespace estep
    */
   void
   declare_postprocessor_parameters(dealii::ParameterHandler &prm);
+
+  /**
+   * The order in which @p postprocessors start or resume (indices into it):
+   * those that run on every MPI rank first, so that their collective calls
+   * meet on every process before an output of the first process alone may
+   * fail; each group in the list's order.
+   */
+  std::vector<std::size_t>
+  start_order(
+    const std::vector<std::unique_ptr<Postprocessor>> &postprocessors);
 
   /** The postprocessors named in `List`, in its order. */
   std::vector<std::unique_ptr<Postprocessor>>
