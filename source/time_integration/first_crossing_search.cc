@@ -162,10 +162,6 @@ namespace estep
     const double c0  = query.lower_level;
     const double c1  = query.upper_level;
     const double end = query.horizon;
-    const int    departure_sign =
-      query.departure == Departure::from_lower_level ? +1 :
-         query.departure == Departure::from_upper_level ? -1 :
-                                                          0;
     // The band around a level that counts as sitting on it: a few times the
     // flight's round-off, so that enclosures (widened by that round-off
     // themselves) can fit inside, and never less than a few units of
@@ -186,14 +182,23 @@ namespace estep
     // The level the flight sits on at s = 0, if any: the departure level, or
     // a level that f(0) lies within the band of.
     const double sitting_level =
-      departure_sign > 0 ? c0 :
-      departure_sign < 0 ? c1 :
+      query.departure == Departure::from_lower_level ?
+        c0 :
+      query.departure == Departure::from_upper_level ?
+        c1 :
       std::abs(f_zero - c0) <= tolerance ?
-                           c0 :
+        c0 :
       std::abs(f_zero - c1) <= tolerance ?
-                           c1 :
-                           std::numeric_limits<double>::quiet_NaN();
+        c1 :
+        std::numeric_limits<double>::quiet_NaN();
     const bool sitting = !std::isnan(sitting_level);
+    // The side of the sitting level the terrace lies on: +1 on the lower
+    // level, -1 on the upper one, 0 strictly inside. A flight that starts
+    // interior but within the band of a level (a run whose initial V lies on
+    // a level, to round-off) is treated as departing from it: the flight is
+    // on the level, and moving out of the terrace through it is a crossing
+    // at once, not a crawl along the band.
+    const int departure_sign = !sitting ? 0 : sitting_level == c0 ? +1 : -1;
     // On [0, prefix_end] f is proven not to leave the sitting level and come
     // back: it stays within the tolerance of it, or moves away monotonically.
     double       prefix_end = 0.;

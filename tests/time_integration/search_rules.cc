@@ -396,6 +396,43 @@ namespace
       }
   }
 
+  TEST(SearchRules, ARunStartingOnALevelAndLeavingTheTerraceCrossesItAtOnce)
+  {
+    // A run whose initial V lies on a level to round-off (a body resting at a
+    // height that makes m g z a multiple of h) starts interior, on the level:
+    // f = 1e-13 - s leaves the terrace [0, 1] downwards through 0 at once.
+    // The crossing is at s = 0 or at its root 1e-13, found in a few
+    // intervals, not by crawling along the band one resolution at a time
+    // (which reported it late, at 4e-12).
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({1. - 1e-13, 1.}, false, 1e-12) :
+                     PolynomialFlight({1e-13, -1.}, false, 1e-12);
+        SearchStatistics statistics;
+        const Crossing   crossing =
+          search(flight, Departure::interior, 1., &statistics);
+        expect_crossing(crossing, mirrored ? +1 : -1, 1e-13, 1e-13);
+        EXPECT_LT(statistics.n_enclosures, 100u);
+      }
+  }
+
+  TEST(SearchRules, ARunStartingOnALevelAndEnteringTheTerraceReachesTheOther)
+  {
+    // The same start moving into the terrace, f = 1e-13 + s: no crossing at
+    // the start; the upper level at s = 1 - 1e-13.
+    for (const bool mirrored : {false, true})
+      {
+        const PolynomialFlight flight =
+          mirrored ? PolynomialFlight({1. - 1e-13, -1.}, false, 1e-12) :
+                     PolynomialFlight({1e-13, 1.}, false, 1e-12);
+        expect_crossing(search(flight, Departure::interior, 2.),
+                        mirrored ? -1 : +1,
+                        1. - 1e-13,
+                        1e-9);
+      }
+  }
+
   // -- The prefix: the rules for the departure level hold only from s = 0 on,
   // while f has not left the level's band.
 
