@@ -156,7 +156,11 @@ namespace estep
       out << text;
       out.close();
       if (!out)
-        throw std::runtime_error("Cannot write the file <" + temporary + ">.");
+        {
+          std::remove(temporary.c_str()); // no partial file stays behind
+          throw std::runtime_error("Cannot write the file <" + temporary +
+                                   ">.");
+        }
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0)
       throw std::runtime_error("Cannot rename <" + temporary + "> to <" + path +

@@ -39,6 +39,35 @@ namespace estep
       return "Field output: " + message + ".";
     }
 
+    /** The files of a snapshot being written: removed, should it fail
+     * (a full disk), so that no partial file stays behind. */
+    class UnfinishedFiles
+    {
+    public:
+      void
+      add(const std::filesystem::path &file)
+      {
+        files.push_back(file);
+      }
+
+      /** The snapshot is complete: the files stay. */
+      void
+      keep()
+      {
+        files.clear();
+      }
+
+      ~UnfinishedFiles()
+      {
+        std::error_code ignored;
+        for (const std::filesystem::path &file : files)
+          std::filesystem::remove(file, ignored);
+      }
+
+    private:
+      std::vector<std::filesystem::path> files;
+    };
+
     /** The HDF5 group of body @p b. */
     std::string
     body_group(const unsigned int b)
@@ -172,7 +201,9 @@ namespace estep
       xdmf.fields    = snapshot_fields;
       xdmf.meshes.clear();
       const std::filesystem::path file = directory / xdmf.mesh_file;
-      Hdf5File                    mesh(file.string() + ".part");
+      UnfinishedFiles             unfinished;
+      unfinished.add(file.string() + ".part");
+      Hdf5File mesh(file.string() + ".part");
       for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
         {
           const P1CellData &cells = bodies.body(b).cell_data();
@@ -221,6 +252,7 @@ namespace estep
             {"obstacles", "obstacles", n_points, n_triangles, 3, false});
         }
       mesh.close();
+      unfinished.keep();
       if (rank == 0)
         std::filesystem::rename(file.string() + ".part", file);
     }
@@ -258,13 +290,11 @@ namespace estep
           self.write_hdf5_mesh(points, triangles);
         else if (self.has_obstacles && self.rank == 0)
           {
-            const std::filesystem::path file =
-              self.directory / "fields" / "obstacles.vtu";
-            std::ofstream out(file);
+            std::ostringstream out;
             VtuFile(points, triangles, 3).write(out, 0., 0, {}, {});
-            out.close();
-            if (!out)
-              throw std::runtime_error("cannot write <" + file.string() + ">");
+            write_file_atomically(
+              (self.directory / "fields" / "obstacles.vtu").string(),
+              out.str());
           }
       }
     catch (const std::runtime_error &error)
@@ -385,11 +415,14 @@ namespace estep
     char               name[64];
     std::snprintf(name, sizeof(name), "solution-%05u", n);
     const std::string         snapshot_name = name;
+    UnfinishedFiles           unfinished;
     std::unique_ptr<Hdf5File> hdf5;
     if (self.format == Format::hdf5)
       {
-        hdf5 = std::make_unique<Hdf5File>(
-          (self.directory / "fields" / (snapshot_name + ".h5")).string());
+        const std::filesystem::path file =
+          self.directory / "fields" / (snapshot_name + ".h5");
+        unfinished.add(file);
+        hdf5 = std::make_unique<Hdf5File>(file.string());
         hdf5->write_attribute("time", snapshot.t);
       }
     // In vtu, one file per body, written in place: a new file that the
@@ -465,6 +498,7 @@ namespace estep
         const std::filesystem::path file =
           self.directory / "fields" / file_name;
         std::filesystem::remove(file);
+        unfinished.add(file);
         std::ofstream out(file);
         self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
         out.close();
@@ -491,12 +525,12 @@ namespace estep
           }
         files.push_back(file_name);
       }
+    if (hdf5)
+      hdf5->close();
+    unfinished.keep();
     std::string series_entry;
     if (hdf5)
-      {
-        hdf5->close();
-        series_entry = "fields/" + snapshot_name + ".h5";
-      }
+      series_entry = "fields/" + snapshot_name + ".h5";
     else if (n_bodies > 1 || self.has_obstacles)
       {
         // The bodies of one snapshot as a multiblock data set.

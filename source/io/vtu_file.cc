@@ -189,8 +189,6 @@ namespace estep
     for (const std::string &piece : pieces)
       out << "<Piece Source=\"" << piece << "\"/>\n";
     out << "</PUnstructuredGrid>\n</VTKFile>\n";
-    if (!out)
-      throw std::runtime_error("VtuFile: writing the file failed.");
   }
 
 
@@ -207,8 +205,6 @@ namespace estep
       out << "<DataSet timestep=\"" << time
           << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
     out << "</Collection>\n</VTKFile>\n";
-    if (!out)
-      throw std::runtime_error("VtuFile: writing the file failed.");
   }
 
 
@@ -247,7 +243,5 @@ namespace estep
     write_fields(out, "PointData", point_fields, n_points);
     write_fields(out, "CellData", cell_fields, n_cells);
     out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-    if (!out)
-      throw std::runtime_error("VtuFile: writing the file failed.");
   }
 } // namespace estep

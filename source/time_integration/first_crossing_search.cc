@@ -143,13 +143,8 @@ namespace estep
 
 
 
-  SearchStalled::SearchStalled(const double s, const double width)
-    : std::runtime_error("the first-crossing search examined " +
-                         std::to_string(max_intervals_examined) +
-                         " intervals without deciding, the last at flight "
-                         "parameter s = " +
-                         to_short_string(s) + ", " + to_short_string(width) +
-                         " wide")
+  SearchStalled::SearchStalled(const std::string &reason)
+    : std::runtime_error(reason)
   {}
 
 
@@ -172,6 +167,10 @@ namespace estep
     const double tolerance =
       4. * std::max(flight.value_tolerance(),
                     4. * epsilon * std::max(std::abs(c0), std::abs(c1)));
+    if (!(tolerance < 0.5 * (c1 - c0)))
+      throw SearchStalled("the round-off band of V along the flight, " +
+                          to_short_string(tolerance) +
+                          ", is not below half the energy step");
     // f = +infinity where the configuration is inadmissible (beyond the
     // flight's admissible limit); such intervals are never enclosed.
     const auto value_at = [&](const double s) {
@@ -225,7 +224,13 @@ namespace estep
             const PendingInterval I = pending.back();
             pending.pop_back();
             if (++n_examined > max_intervals_examined)
-              throw SearchStalled(I.a, I.b - I.a);
+              throw SearchStalled(
+                "the first-crossing search examined " +
+                std::to_string(max_intervals_examined) +
+                " intervals without deciding, the last at flight parameter "
+                "s = " +
+                to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
+                " wide");
             statistics.max_intervals_in_one_search =
               std::max(statistics.max_intervals_in_one_search, n_examined);
             // The rules for the sitting level apply while f(a) is still

@@ -221,4 +221,67 @@ namespace
     std::cout << n_crossings << " crossings, " << n_enclosures
               << " enclosures\n";
   }
+
+  TEST(FirstCrossingSearch, StopsAtOnceWhereTheRoundOffBlursTheLevels)
+  {
+    // A round-off band (four value tolerances) of half the terrace or more
+    // cannot tell the levels 0 and 1 apart: the search says so at once.
+    SearchStatistics statistics;
+    EXPECT_THROW(find_first_crossing(PolynomialFlight({0.5, 1.}, false, 0.2),
+                                     query(0., 1., Departure::interior, 1., 1.),
+                                     statistics),
+                 SearchStalled);
+    EXPECT_EQ(statistics.n_enclosures, 0u);
+    // Below that the same flight's crossing is found.
+    const Crossing crossing =
+      find_first_crossing(PolynomialFlight({0.5, 1.}, false, 0.1),
+                          query(0., 1., Departure::interior, 1., 1.),
+                          statistics);
+    EXPECT_EQ(crossing.direction, +1);
+    EXPECT_NEAR(crossing.s, 0.5, 0.1);
+  }
+
+  /** f = 0, on its departure level, with enclosures that prove nothing
+   * (they are wider than the band and give f' no sign) and claim no
+   * round-off: every interval near s = 0 is bisected to the resolution. */
+  class UselessEnclosureFlight : public FreeFlight
+  {
+  public:
+    double
+    value(const double) const override
+    {
+      return 0.;
+    }
+
+    LineValue
+    value_and_derivative(const double) const override
+    {
+      return {0., 0.};
+    }
+
+    LineEnclosure
+    enclose(const double, const double) const override
+    {
+      return {{-1e-3, 1e-3}, {-1., 1.}};
+    }
+
+    double
+    value_tolerance() const override
+    {
+      return 0.;
+    }
+  };
+
+  TEST(FirstCrossingSearch, GivesUpAfterItsCapOnIntervals)
+  {
+    // The search crawls from s = 0 one resolution at a time; after
+    // max_intervals_examined intervals it stops with SearchStalled instead.
+    SearchStatistics statistics;
+    EXPECT_THROW(
+      find_first_crossing(UselessEnclosureFlight(),
+                          query(0., 1., Departure::from_lower_level, 1., 1.),
+                          statistics),
+      SearchStalled);
+    EXPECT_EQ(statistics.max_intervals_in_one_search, max_intervals_examined);
+  }
 } // namespace

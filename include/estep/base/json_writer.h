@@ -49,7 +49,7 @@ namespace estep
   /**
    * Write @p text to @p path atomically: to a temporary file beside it first,
    * then renamed, so that a reader never sees a half-written file. Throws
-   * std::runtime_error on failure.
+   * std::runtime_error on failure, after removing the temporary file.
    */
   void
   write_file_atomically(const std::string &path, const std::string &text);

@@ -44,7 +44,9 @@ namespace estep
 
     /**
      * Writes one file: the mesh with the given point and cell fields, and the
-     * time and cycle as field data (TIME, CYCLE).
+     * time and cycle as field data (TIME, CYCLE). As the other writers, it
+     * leaves a failure in the state of @p out for the caller, who knows the
+     * file's name, to report.
      */
     void
     write(std::ostream             &out,

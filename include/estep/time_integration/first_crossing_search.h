@@ -69,13 +69,14 @@ namespace estep
    */
   constexpr std::uint64_t max_intervals_examined = std::uint64_t(1) << 20;
 
-  /** Thrown by find_first_crossing() when it examined max_intervals_examined
-   * intervals without deciding. */
+  /** Thrown by find_first_crossing() when it cannot decide: it examined
+   * max_intervals_examined intervals, or the round-off of f blurs the
+   * levels together. */
   class SearchStalled : public std::runtime_error
   {
   public:
-    /** The search stalled on an interval [s, s + width]. */
-    SearchStalled(const double s, const double width);
+    /** The search stalled for the @p reason given. */
+    explicit SearchStalled(const std::string &reason);
   };
 
   /**
@@ -113,7 +114,9 @@ namespace estep
    *   return shallower than the round-off of f) reports the departure level
    *   as reached: where f(b) lies beyond it, at the latest;
    * - the search always ends: after max_intervals_examined intervals it
-   *   throws SearchStalled instead of crawling on at round-off.
+   *   throws SearchStalled instead of crawling on at round-off; so it does at
+   *   once where that band is half the terrace or more (the round-off of f
+   *   cannot tell the two levels apart).
    */
   Crossing
   find_first_crossing(const FreeFlight    &flight,
