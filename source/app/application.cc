@@ -73,9 +73,10 @@ namespace estep
       "the directory named by 'set Output directory'.\n"
       "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
       "stalled (its event search could not advance at round-off), 4 an output could\n"
-      "not be written (e.g. a full disk), 5 bodies passed into each other (e.g. a\n"
-      "penalty too soft to keep them apart), 128 + the signal's number when SIGINT or\n"
-      "SIGTERM ended the run (130, 143; summary.json says interrupted).\n";
+      "not be written (e.g. a full disk), 5 a body passed into another or into an\n"
+      "obstacle (e.g. a penalty too soft to keep them apart), 128 + the signal's\n"
+      "number when SIGINT or SIGTERM ended the run (130, 143; summary.json says\n"
+      "interrupted).\n";
 
     /** The usage and the registered plugins, by extension point. */
     void
@@ -173,10 +174,14 @@ namespace estep
             command.resume = true;
           else if (arg == "--threads")
             {
-              if (i + 1 >= argc)
+              const std::string n = (i + 1 < argc) ? argv[++i] : "";
+              if (n.empty() ||
+                  n.find_first_not_of("0123456789") != std::string::npos)
                 throw std::runtime_error(
-                  "The option --threads needs a number of threads.");
-              command.overrides.push_back(std::string("Threads=") + argv[++i]);
+                  "The option --threads needs a number of threads (0 or more; "
+                  "0: one per core), not <" +
+                  n + ">.");
+              command.overrides.push_back("Threads=" + n);
             }
           else if (arg == "-s" || arg == "--set")
             {
@@ -653,6 +658,16 @@ namespace estep
               checkpoint.emplace(file);
               checkpoint->check_parameters(parameters_as_read);
               resumed_state = checkpoint->restore(*integrator);
+              if (integrator->time() > parameters.end_time)
+                {
+                  std::ostringstream message;
+                  message << "--resume: Time integration/End time = "
+                          << parameters.end_time
+                          << " is before the time of the checkpoint <" << file
+                          << ">, t = " << integrator->time()
+                          << "; a run resumes to its end time or a later one.";
+                  throw std::runtime_error(message.str());
+                }
               std::cout << "estep: resuming from <" << file
                         << "> at t = " << integrator->time() << " after "
                         << integrator->n_steps() << " steps\n";

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -407,12 +408,14 @@ namespace estep
     std::vector<HalfSpace>                  half_spaces,
     std::vector<unsigned int>               points_in,
     const Mode                              mode,
-    const double                            penalty_parameter)
+    const double                            penalty_parameter,
+    const double                            penetration_limit)
     : SystemDecorator(std::move(base))
     , planes(std::move(half_spaces))
     , contact_points(std::move(points_in))
     , obstacle_mode(mode)
     , eps(mode == Mode::penalty ? penalty_parameter : 0.)
+    , depth_limit(penetration_limit)
     , dim(base_system->spatial_dimension())
   {
     if (dim == 0 || dim > 3 || base_system->n_dofs() % dim != 0)
@@ -652,6 +655,28 @@ namespace estep
   HalfSpaceObstacles::points() const
   {
     return contact_points;
+  }
+
+
+
+  std::string
+  HalfSpaceObstacles::penetration(const Vector &q) const
+  {
+    if (std::string base = base_system->penetration(q); !base.empty())
+      return base;
+    for (const unsigned int i : contact_points)
+      for (unsigned int k = 0; k < planes.size(); ++k)
+        if (const double depth = -signed_distance(q, i, k); depth > depth_limit)
+          {
+            std::ostringstream text;
+            text << "a boundary point (point " << i << ") lies " << depth
+                 << " behind half-space " << k + 1
+                 << ", deeper than the longest boundary edge " << depth_limit
+                 << " of the meshes; the penalty (Contact/Penalty parameter = "
+                 << eps << ", smaller is stiffer) is too soft to hold it out.";
+            return text.str();
+          }
+    return "";
   }
 
 

@@ -23,7 +23,9 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -398,13 +400,14 @@ namespace estep
            dealii::Utilities::split_string_list(prm.get("Boundary ids"), ','))
         ids.insert(dealii::Utilities::string_to_int(id));
       std::set<unsigned int> fixed;
-      if (!ids.empty())
+      for (const unsigned int id : ids)
         {
-          const auto points = points_on_boundary(*body, ids);
+          const auto points = points_on_boundary(*body, {id});
           if (points.empty())
             throw std::runtime_error(section +
                                      "/Supports/Boundary ids: no boundary "
-                                     "face of the body has these ids.");
+                                     "face of the body has the id " +
+                                     std::to_string(id) + ".");
           fixed.insert(points.begin(), points.end());
         }
       const std::string region = prm.get("Region");
@@ -436,11 +439,65 @@ namespace estep
       return result;
     }
 
+    /** The lines of each subsection of Scene in @p prm (printed without
+     * documentation), by its name. */
+    std::map<std::string, std::vector<std::string>>
+    scene_subsections(const dealii::ParameterHandler &prm)
+    {
+      std::ostringstream text;
+      prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+      std::istringstream                              in(text.str());
+      std::map<std::string, std::vector<std::string>> sections;
+      const std::string                               opening = "  subsection ";
+      bool                                            in_scene = false;
+      std::vector<std::string>                       *section  = nullptr;
+      for (std::string line; std::getline(in, line);)
+        if (line == "subsection Scene" || line == "end")
+          in_scene = (line != "end");
+        else if (in_scene && line.rfind(opening, 0) == 0)
+          section = &sections[line.substr(opening.size())];
+        else if (in_scene && line == "  end")
+          section = nullptr;
+        else if (section != nullptr)
+          section->push_back(line);
+      return sections;
+    }
+
+    /**
+     * Throws if a body of the scene has every entry at its default: its
+     * subsection is missing from the input (Number of bodies larger than
+     * the bodies given), and the default body would join the scene unseen.
+     */
+    void
+    check_every_body_is_given(const dealii::ParameterHandler &prm,
+                              const unsigned int              n_bodies)
+    {
+      dealii::ParameterHandler defaults;
+      defaults.enter_subsection("Scene");
+      defaults.enter_subsection(body_section(0));
+      declare_body_parameters(defaults);
+      defaults.leave_subsection();
+      defaults.leave_subsection();
+      const std::vector<std::string> default_body =
+        scene_subsections(defaults)[body_section(0)];
+      auto sections = scene_subsections(prm);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        if (sections[body_section(b)] == default_body)
+          throw std::runtime_error(
+            "Scene/" + body_section(b) +
+            ": not given (every entry at its default); Number of bodies = " +
+            std::to_string(n_bodies) + " asks for the subsections " +
+            (n_bodies == 1 ? "Body 1" :
+                             "Body 1 to " + body_section(n_bodies - 1)) +
+            ".");
+    }
+
     Problem
     create_scene_problem(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Scene");
       const unsigned int n_bodies = prm.get_integer("Number of bodies");
+      check_every_body_is_given(prm, n_bodies);
       const Point3 gravity = parse_point(prm.get("Gravity"), "Scene/Gravity");
       std::vector<SceneBody> bodies;
       for (unsigned int b = 0; b < n_bodies; ++b)
@@ -545,6 +602,10 @@ namespace estep
       std::shared_ptr<const SupportedSystem>    supported;
       if (!planes.empty())
         {
+          double longest_edge = 0.;
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            longest_edge =
+              std::max(longest_edge, contact_system->penetration_limit(b, b));
           obstacles = std::make_shared<HalfSpaceObstacles>(
             system,
             planes,
@@ -552,7 +613,8 @@ namespace estep
             contact.mode == ContactParameters::Mode::penalty ?
               HalfSpaceObstacles::Mode::penalty :
               HalfSpaceObstacles::Mode::impenetrability,
-            contact.penalty_parameter);
+            contact.penalty_parameter,
+            longest_edge);
           if (const unsigned int behind = obstacles->n_points_behind(q0))
             throw std::runtime_error(
               "Scene/Obstacles: " + std::to_string(behind) +

@@ -96,8 +96,9 @@ namespace estep
   namespace
   {
     /**
-     * The times t_k = t0 + k interval below t_end, then t_end: output times
-     * and checkpoint times. next() is the first one after the time reached.
+     * The times t_k = t0 + k interval below t_end, then t_end (an interval
+     * of 0: t0 and t_end): output times and checkpoint times. next() is the
+     * first one after the time reached.
      */
     class TimeGrid
     {
@@ -112,8 +113,10 @@ namespace estep
       double
       at(const std::uint64_t k) const
       {
+        if (!(interval > 0.))
+          return k == 0 ? t0 : t_end;
         const double t_k = t0 + static_cast<double>(k) * interval;
-        return (interval > 0. && t_k < t_end) ? t_k : t_end;
+        return t_k < t_end ? t_k : t_end;
       }
 
       /** Whether every time of the grid has been passed. */
@@ -260,7 +263,7 @@ namespace estep
                   !penetration.empty())
                 {
                   std::ostringstream message;
-                  message << "The bodies passed into each other at t = "
+                  message << "A body passed through contact at t = "
                           << integrator.time() << ": " << penetration;
                   throw PenetratedRun(message.str());
                 }

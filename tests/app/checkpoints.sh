@@ -171,6 +171,11 @@ same_run cube_reference run "--resume without a checkpoint"
 "$ESTEP" "${cube[@]}" --set "Time integration/End time=2.5" --resume > /dev/null 2>&1 \
   || fail "continuing a completed run"
 tail -1 run/history.csv | grep -q "^2.5," || fail "continuing a completed run: no row at t = 2.5"
+"$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 1 ]] || fail "an end time before the checkpoint's: exit code $rc"
+grep -q "End time = 2 is before the time of the checkpoint <run/checkpoint.bin>, t = 2.5" err.txt || fail "an end time before the checkpoint's: $(cat err.txt)"
+tail -1 run/history.csv | grep -q "^2.5," || fail "a refused resume changed history.csv"
 "$ESTEP" "${cube[@]}" --set "Time integration/Energy stepping/Energy step=2e-5" --resume \
   > out.txt 2> err.txt
 rc=$?

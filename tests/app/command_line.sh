@@ -86,6 +86,9 @@ grep -Eq '"cell kernels": "(x86-64(-v[34])?|portable C\+\+)"' run/summary.json |
   fail "summary.json lacks the cell kernels' instruction set"
 [[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
 python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
+# A history interval of 0: the start and the end.
+expect 0 "completed at t = 2" -- run.prm -s "Output/History interval=0" -s "Output directory=ends"
+[[ $(cut -d, -f1 ends/history.csv | tail -n +2 | tr '\n' ' ') == "0 2 " ]] || fail "history.csv with interval 0 should have the rows t = 0 and 2: $(cut -d, -f1 ends/history.csv)"
 
 # parameters.json beside parameters.prm, a valid input itself.
 [[ -s run/parameters.json ]] || fail "run/parameters.json missing"
@@ -117,7 +120,8 @@ expect 1 "Unknown option <--frobnicate>" -- --frobnicate run.prm
 printf 'subsection Time integration\n  set Method = {nergy stepping\nend\n' > brace.prm
 expect 1 "Time integration/Method: the value <\{nergy stepping> does not match" -- brace.prm
 expect 1 "needs a number of threads" -- run.prm --threads
-expect 1 "Threads.*does not match" -- run.prm --threads -2
+expect 1 "The option --threads needs a number of threads \(0 or more; 0: one per core\), not <-2>\.$" -- run.prm --threads -2
+expect 1 "Threads.*does not match" -- run.prm -s "Threads=-2"
 # Started as several processes by a launcher whose MPI is not estep's (its environment says 2
 # processes, as Open MPI's and MPICH's set it, but MPI sees 1): the first says so once; the
 # others exit as quietly. (unit/mpi runs estep on 2 processes.)
@@ -245,7 +249,7 @@ grep -q '"warnings": \[\]' verlet/summary.json || fail "summary.json of the refe
 # A penalty that lets the bodies pass (eps is a compliance: 1e300 makes the contact energy
 # vanish): the run stops when a body is deeper than an element inside the other, status
 # penetrated, exit code 5.
-expect 5 "The bodies passed into each other at t = 0.2[0-9]*: a boundary point of body 2 \(point [0-9]+\) lies 0.5[0-9]* inside body 1, deeper than the longest boundary edge 0.508[0-9]* of the two meshes; the penalty \(Contact/Penalty parameter = 1e\+300, smaller is stiffer\) is too soft to keep them apart\.$" -- "${balls[@]}" -s "Contact/Penalty parameter=1e300" -s "Time integration/End time=0.3" -s "Output directory=passed"
+expect 5 "A body passed through contact at t = 0.2[0-9]*: a boundary point of body 2 \(point [0-9]+\) lies 0.5[0-9]* inside body 1, deeper than the longest boundary edge 0.508[0-9]* of the two meshes; the penalty \(Contact/Penalty parameter = 1e\+300, smaller is stiffer\) is too soft to keep them apart\.$" -- "${balls[@]}" -s "Contact/Penalty parameter=1e300" -s "Time integration/End time=0.3" -s "Output directory=passed"
 grep -q '"status": "penetrated"' passed/summary.json || fail "summary.json of a penetrated run lacks status penetrated"
 # A penalty whose energy in an element-deep intersection is below the energy step: a flight
 # could carry the bodies through each other unseen; energy-stepping warns at the start.

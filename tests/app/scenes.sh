@@ -221,7 +221,9 @@ expect_error "Contact/Penalty parameter: only Mode = penalty uses it \(Mode = im
 expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Mode=none"
 expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
 expect_error "Scene/Body 3/Supports: every vertex of the body is fixed" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=1"
-expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has these ids" "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=7"
+expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has the id 7\." "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=7"
+expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has the id 7\." "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=0, 7"
+expect_error "Scene/Body 6: not given \(every entry at its default\); Number of bodies = 6 asks for the subsections Body 1 to Body 6\." "${cradle[@]}" -s "Scene/Number of bodies=6"
 expect_error "Scene/Body 4/Mesh: .*cannot open the gmsh file 'missing.msh'" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=missing.msh"
 printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n$Elements\n1\n1 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n' > hexahedron.msh
 expect_error "Scene/Body 4/Mesh: The mesh has a cell that is not a tetrahedron" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=hexahedron.msh"

@@ -4,6 +4,7 @@
 #include <estep/composite/system_decorator.h>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,16 +69,20 @@ namespace estep
     /**
      * The obstacles @p half_spaces acting on the points @p points (indices
      * of points of @p base, i.e. coordinates dim * i ... dim * i + dim - 1)
-     * in @p mode; @p penalty_parameter is eps (penalty mode only, > 0).
+     * in @p mode; @p penalty_parameter is eps (penalty mode only, > 0);
+     * @p penetration_limit the depth behind a plane at which penetration()
+     * reports a point (infinite: never).
      * Throws std::invalid_argument for a zero or non-finite normal, a point
      * out of range, a base whose n_dofs() is not a multiple of its spatial
      * dimension, or a bad penalty parameter.
      */
-    HalfSpaceObstacles(std::shared_ptr<const MechanicalSystem> base,
-                       std::vector<HalfSpace>                  half_spaces,
-                       std::vector<unsigned int>               points,
-                       const Mode                              mode,
-                       const double penalty_parameter = 0.);
+    HalfSpaceObstacles(
+      std::shared_ptr<const MechanicalSystem> base,
+      std::vector<HalfSpace>                  half_spaces,
+      std::vector<unsigned int>               points,
+      const Mode                              mode,
+      const double                            penalty_parameter = 0.,
+      const double penetration_limit = std::numeric_limits<double>::infinity());
 
     ~HalfSpaceObstacles() override;
 
@@ -144,6 +149,12 @@ namespace estep
     void
     hessian(const Vector &q, dealii::SparseMatrix<double> &H) const override;
 
+    /** The base's penetration(), else a point deeper behind a plane than
+     * the penetration limit of the constructor: a penalty too soft to hold
+     * the bodies out of the obstacle. */
+    std::string
+    penetration(const Vector &q) const override;
+
     /** The base's names and "points behind obstacles". */
     std::vector<std::string>
     observable_names() const override;
@@ -199,6 +210,7 @@ namespace estep
     std::vector<unsigned int> contact_points;
     Mode                      obstacle_mode;
     double                    eps;
+    double                    depth_limit;
     unsigned int              dim;
   };
 
