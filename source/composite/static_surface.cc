@@ -62,72 +62,99 @@ namespace estep
     surface.name = filename;
     std::map<std::array<double, 3>, unsigned int> point_of;
     std::vector<unsigned int>                     loop;
-    std::string                                   word;
-    bool                                          started = false;
-    bool                                          in_loop = false;
+    // Where the reader is: each keyword is accepted in one place only, so
+    // that a file cut short (or spliced) is refused, not read in part.
+    enum class Place
+    {
+      before_solid,
+      in_solid,
+      in_facet,
+      in_loop,
+      after_loop,
+      after_solid
+    };
+    Place       place = Place::before_solid;
+    std::string word;
+    const auto  expect = [&](const bool where_allowed) {
+      if (!where_allowed)
+        throw std::runtime_error(what + "unexpected <" + word +
+                                 "> (the file is cut short or malformed).");
+    };
     while (in >> word)
-      {
-        if (!started)
-          {
-            if (word != "solid")
+      if (word == "solid")
+        {
+          expect(place == Place::before_solid || place == Place::after_solid);
+          std::string rest;
+          std::getline(in, rest); // the solid's name
+          place = Place::in_solid;
+        }
+      else if (place == Place::before_solid)
+        throw std::runtime_error(what +
+                                 "not an ASCII STL file (it does not start "
+                                 "with 'solid').");
+      else if (word == "facet")
+        {
+          expect(place == Place::in_solid);
+          std::array<double, 3> normal; // not used
+          if (!(in >> word) || word != "normal" ||
+              !(in >> normal[0] >> normal[1] >> normal[2]))
+            throw std::runtime_error(what +
+                                     "a facet without 'normal' and three "
+                                     "numbers.");
+          place = Place::in_facet;
+        }
+      else if (word == "outer")
+        {
+          expect(place == Place::in_facet);
+          if (!(in >> word) || word != "loop")
+            throw std::runtime_error(what + "'outer' without 'loop'.");
+          loop.clear();
+          place = Place::in_loop;
+        }
+      else if (word == "vertex")
+        {
+          expect(place == Place::in_loop);
+          std::array<double, 3> x;
+          for (double &c : x)
+            if (!(in >> c))
               throw std::runtime_error(what +
-                                       "not an ASCII STL file (it does not "
-                                       "start with 'solid').");
-            started = true;
-            std::string rest;
-            std::getline(in, rest); // the solid's name
-            continue;
-          }
-        if (word == "vertex")
-          {
-            std::array<double, 3> x;
-            for (double &c : x)
-              if (!(in >> c))
-                throw std::runtime_error(what +
-                                         "a vertex without three numbers.");
-            if (!in_loop)
-              throw std::runtime_error(what + "a vertex outside a loop.");
-            const auto [it, inserted] =
-              point_of.emplace(x, static_cast<unsigned int>(point_of.size()));
-            if (inserted)
-              surface.points.insert(surface.points.end(), x.begin(), x.end());
-            loop.push_back(it->second);
-          }
-        else if (word == "outer")
-          {
-            in >> word; // "loop"
-            in_loop = true;
-            loop.clear();
-          }
-        else if (word == "endloop")
-          {
-            if (loop.size() != 3)
-              throw std::runtime_error(
-                what + "a facet with " + std::to_string(loop.size()) +
-                " vertices (only triangles are supported).");
-            surface.triangles.push_back({{loop[0], loop[1], loop[2]}});
-            in_loop = false;
-          }
-        else if (word == "facet")
-          {
-            // "normal nx ny nz": not used.
-            std::string rest;
-            std::getline(in, rest);
-          }
-        else if (word == "endfacet")
-          continue;
-        else if (word == "endsolid" || word == "solid")
-          {
-            std::string rest;
-            std::getline(in, rest);
-          }
-        else
-          throw std::runtime_error(what + "unexpected word <" + word + ">.");
-      }
-    if (!started)
+                                       "a vertex without three numbers.");
+          const auto [it, inserted] =
+            point_of.emplace(x, static_cast<unsigned int>(point_of.size()));
+          if (inserted)
+            surface.points.insert(surface.points.end(), x.begin(), x.end());
+          loop.push_back(it->second);
+        }
+      else if (word == "endloop")
+        {
+          expect(place == Place::in_loop);
+          if (loop.size() != 3)
+            throw std::runtime_error(
+              what + "a facet with " + std::to_string(loop.size()) +
+              " vertices (only triangles are supported).");
+          place = Place::after_loop;
+        }
+      else if (word == "endfacet")
+        {
+          expect(place == Place::after_loop);
+          surface.triangles.push_back({{loop[0], loop[1], loop[2]}});
+          place = Place::in_solid;
+        }
+      else if (word == "endsolid")
+        {
+          expect(place == Place::in_solid);
+          std::string rest;
+          std::getline(in, rest);
+          place = Place::after_solid;
+        }
+      else
+        throw std::runtime_error(what + "unexpected word <" + word + ">.");
+    if (place == Place::before_solid)
       throw std::runtime_error(what + "empty.");
-    if (in_loop)
-      throw std::runtime_error(what + "ends inside a loop.");
+    if (place != Place::after_solid)
+      throw std::runtime_error(what +
+                               "ends before its 'endsolid' (the file is cut "
+                               "short).");
     surface.check();
     return surface;
   }

@@ -194,6 +194,44 @@ TEST(StaticSurface, BadFilesAreErrorsNamingTheFile)
   expect_error(write_file("static_surface.obj", "v 0 0 0\n"));
 }
 
+TEST(StaticSurface, AnStlFileCutShortIsAnError)
+{
+  // Every prefix of a good file that ends before its closing 'endsolid' is
+  // refused (a file cut short by a full disk or a failed copy), not read in
+  // part; so are keywords out of their place.
+  const std::string full = stl_text(floor_triangles(2.));
+  const std::size_t complete =
+    full.rfind("endsolid") + std::string("endsolid").size();
+  unsigned int n_refused = 0;
+  for (std::size_t length = 1; length < complete; ++length)
+    try
+      {
+        estep::read_static_surface(
+          write_file("static_surface_cut.stl", full.substr(0, length)));
+        ADD_FAILURE() << "a file cut after " << length << " of " << full.size()
+                      << " characters was read";
+      }
+    catch (const std::runtime_error &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("static_surface_cut.stl"),
+                  std::string::npos);
+        ++n_refused;
+      }
+  EXPECT_EQ(n_refused, complete - 1);
+  EXPECT_EQ(estep::read_static_surface(
+              write_file("static_surface_cut.stl", full.substr(0, complete)))
+              .triangles.size(),
+            2u);
+  for (const char *misplaced :
+       {"solid a\nfacet normal 0 0 1\nendfacet\nendsolid a\n",
+        "solid a\nouter loop\nendloop\nendsolid a\n",
+        "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 "
+        "0\nvertex 0 1 0\nendloop\nendsolid a\n"})
+    EXPECT_THROW(estep::read_static_surface(
+                   write_file("static_surface_misplaced.stl", misplaced)),
+                 std::runtime_error);
+}
+
 TEST(StaticSurface, ContactSystemLayout)
 {
   const StaticSurface floor = estep::read_static_surface(
