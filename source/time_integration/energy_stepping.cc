@@ -13,6 +13,16 @@
 
 namespace estep
 {
+  namespace
+  {
+    /** The first search window of a run (before any flight of positive
+     * length), in units of time: small, since the search doubles its
+     * windows (about 20 more enclosures for a first step of order 1). */
+    constexpr double first_window_of_a_run = 0x1p-20;
+  } // namespace
+
+
+
   EnergyStepping::EnergyStepping(const MechanicalSystem &system,
                                  const double            energy_step,
                                  const double            terrace_offset)
@@ -161,8 +171,12 @@ namespace estep
       return;
 
     CrossingQuery query;
-    query.horizon      = horizon;
-    query.first_window = (last_flight > 0.) ? 2. * last_flight : horizon;
+    query.horizon = horizon;
+    // Twice the last flight of positive length; before the first, a small
+    // window that the search doubles: never the horizon, so that the
+    // states before the end time do not depend on it.
+    query.first_window =
+      (last_flight > 0.) ? 2. * last_flight : first_window_of_a_run;
     Crossing                       crossing;
     double                         s_level = horizon;
     std::optional<ConstraintEvent> contact;
@@ -221,8 +235,9 @@ namespace estep
     level_flight   = level;
     const double s = contact ? contact->s : s_level;
     q.add(s, v);
-    t           = (s == horizon) ? t_limit : t + s;
-    last_flight = s;
+    t = (s == horizon) ? t_limit : t + s;
+    if (s > 0.)
+      last_flight = s;
     count_step();
 
     if (contact)

@@ -149,271 +149,292 @@ namespace estep
 
 
 
+  namespace
+  {
+    /** find_first_crossing() in windows that double from the first one on,
+     * the last reaching past the horizon (so that no window depends on the
+     * horizon): a crossing it returns may lie beyond it. */
+    Crossing
+    first_crossing_in_windows(const FreeFlight    &flight,
+                              const CrossingQuery &query,
+                              SearchStatistics    &statistics)
+    {
+      const double c0  = query.lower_level;
+      const double c1  = query.upper_level;
+      const double end = query.horizon;
+      // The band around a level that counts as sitting on it: a few times the
+      // flight's round-off, so that enclosures (widened by that round-off
+      // themselves) can fit inside, and never less than a few units of
+      // round-off of the level itself, which no computed value of f can
+      // resolve (a flight that claims exact values, value_tolerance() = 0, but
+      // widens its enclosures by their rounding would otherwise crawl away from
+      // a level it departs from tangentially, one resolution at a time).
+      const double tolerance =
+        4. * std::max(flight.value_tolerance(),
+                      4. * epsilon * std::max(std::abs(c0), std::abs(c1)));
+      if (!(tolerance < 0.5 * (c1 - c0)))
+        throw SearchStalled("the round-off band of V along the flight, " +
+                            to_short_string(tolerance) +
+                            ", is not below half the energy step");
+      // f = +infinity where the configuration is inadmissible (beyond the
+      // flight's admissible limit); such intervals are never enclosed.
+      const auto value_at = [&](const double s) {
+        ++statistics.n_value_evaluations;
+        return flight.value(s);
+      };
+      const double f_zero = value_at(0.);
+      // The level the flight sits on at s = 0, if any: the departure level, or
+      // a level that f(0) lies within the band of.
+      const double sitting_level =
+        query.departure == Departure::from_lower_level ?
+          c0 :
+        query.departure == Departure::from_upper_level ?
+          c1 :
+        std::abs(f_zero - c0) <= tolerance ?
+          c0 :
+        std::abs(f_zero - c1) <= tolerance ?
+          c1 :
+          std::numeric_limits<double>::quiet_NaN();
+      const bool sitting = !std::isnan(sitting_level);
+      // The side of the sitting level the terrace lies on: +1 on the lower
+      // level, -1 on the upper one, 0 strictly inside. A flight that starts
+      // interior but within the band of a level (a run whose initial V lies on
+      // a level, to round-off) is treated as departing from it: the flight is
+      // on the level, and moving out of the terrace through it is a crossing
+      // at once, not a crawl along the band.
+      const int departure_sign = !sitting ? 0 : sitting_level == c0 ? +1 : -1;
+      // On [0, prefix_end] f is proven not to leave the sitting level and come
+      // back: it stays within the tolerance of it, or moves away monotonically.
+      double       prefix_end = 0.;
+      const double resolution_floor =
+        std::max(query.first_window, std::numeric_limits<double>::min());
+
+      std::vector<PendingInterval> pending;
+      std::uint64_t                n_examined = 0;
+      double window_start = 0., window_length = query.first_window;
+      if (!(window_length > 0.))
+        window_length = end;
+      double f_start = f_zero;
+
+      while (window_start < end)
+        {
+          const double window_end = window_start + window_length;
+          const double f_end      = value_at(window_end);
+          pending.push_back({window_start, window_end, f_start, f_end});
+
+          while (!pending.empty())
+            {
+              const PendingInterval I = pending.back();
+              pending.pop_back();
+              if (++n_examined > max_intervals_examined)
+                throw SearchStalled(
+                  "the first-crossing search examined " +
+                  std::to_string(max_intervals_examined) +
+                  " intervals without deciding, the last at flight parameter "
+                  "s = " +
+                  to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
+                  " wide");
+              statistics.max_intervals_in_one_search =
+                std::max(statistics.max_intervals_in_one_search, n_examined);
+              // The rules for the sitting level apply while f(a) is still
+              // within its band; beyond, f(a) is strictly inside the terrace.
+              const bool in_prefix =
+                sitting && I.a == prefix_end &&
+                std::abs(I.fa - sitting_level) <= tolerance;
+              const bool at_limit    = !std::isfinite(I.fb);
+              bool       up_possible = true, down_possible = true;
+
+              if (!at_limit)
+                {
+                  const LineEnclosure enclosure = flight.enclose(I.a, I.b);
+                  ++statistics.n_enclosures;
+                  const bool increasing = enclosure.derivative.lower > 0.;
+                  const bool decreasing = enclosure.derivative.upper < 0.;
+                  // The unique crossing in [a, b] of the level in @p direction,
+                  // f(a) = fa on the near side of it, f(b) = fb beyond.
+                  const auto locate = [&](const int    direction,
+                                          const double a,
+                                          const double fa,
+                                          const double b,
+                                          const double fb) -> Crossing {
+                    return {direction,
+                            locate_crossing(flight,
+                                            direction > 0 ? c1 : c0,
+                                            a,
+                                            b,
+                                            fa,
+                                            fb,
+                                            enclosure,
+                                            statistics)};
+                  };
+
+                  if (in_prefix &&
+                      enclosure.value.lower >= sitting_level - tolerance &&
+                      enclosure.value.upper <= sitting_level + tolerance)
+                    {
+                      // Still sitting on the level, within round-off.
+                      prefix_end = I.b;
+                      continue;
+                    }
+
+                  if (in_prefix && departure_sign != 0 &&
+                      (departure_sign > 0 ? increasing : decreasing))
+                    {
+                      // Moving away from the departure level all the way from s
+                      // = 0: only the level ahead can be reached, and only if
+                      // f(b) reaches it.
+                      prefix_end = I.b;
+                      if (departure_sign > 0 && I.fb >= c1)
+                        return locate(+1, I.a, I.fa, I.b, I.fb);
+                      if (departure_sign < 0 && I.fb <= c0)
+                        return locate(-1, I.a, I.fa, I.b, I.fb);
+                      continue;
+                    }
+
+                  if (in_prefix && departure_sign != 0 &&
+                      (departure_sign > 0 ? decreasing : increasing))
+                    {
+                      // Still within the band of the departure level, and
+                      // proven to move back through it: f came back within the
+                      // band (a dip or bump shallower than the round-off), so
+                      // the departure level is the one reached, at the latest
+                      // where f(b) is beyond it; if f(a) is beyond it already,
+                      // the flight is on it at a.
+                      const int direction = -departure_sign;
+                      if (direction * (I.fb - sitting_level) >= 0.)
+                        {
+                          if (direction * (I.fa - sitting_level) < 0.)
+                            return locate(direction, I.a, I.fa, I.b, I.fb);
+                          return {direction, I.a};
+                        }
+                      prefix_end = I.b;
+                      continue;
+                    }
+
+                  // A NaN bound proves nothing: the level stays possible.
+                  up_possible   = !(enclosure.value.upper < c1);
+                  down_possible = !(enclosure.value.lower > c0);
+                  // Convexity: where f is convex its sublevel sets are
+                  // intervals, so on [a, b] it stays below max(f(a), f(b)) and
+                  // crosses a level at most once going down and once going up;
+                  // where it is concave, the mirror image. This decides
+                  // intervals that hold a turning point of f, where the slope
+                  // has no sign. It applies where f(a) lies strictly inside the
+                  // terrace (outside the prefix: everything before a has been
+                  // dismissed) or on the level f departs from, moving away.
+                  {
+                    const double m  = enclosure.sample_point;
+                    const double fm = enclosure.sample.value;
+                    const bool   sampled =
+                      m > I.a && m < I.b && std::isfinite(fm);
+                    const bool inside = !in_prefix;
+                    if (enclosure.curvature.lower > 0. &&
+                        (inside || (departure_sign < 0 && in_prefix)))
+                      {
+                        // Convex, from inside or leaving c1 downwards.
+                        if (I.fb <= c0)
+                          return locate(-1, I.a, I.fa, I.b, I.fb);
+                        if (I.fb >= c1)
+                          {
+                            if (!down_possible && inside)
+                              return locate(+1, I.a, I.fa, I.b, I.fb);
+                            if (!down_possible && sampled && fm < c1)
+                              return locate(+1, m, fm, I.b, I.fb);
+                          }
+                        else
+                          {
+                            if (sampled && fm <= c0)
+                              return locate(-1, I.a, I.fa, m, fm);
+                            up_possible = false;
+                          }
+                      }
+                    else if (enclosure.curvature.upper < 0. &&
+                             (inside || (departure_sign > 0 && in_prefix)))
+                      {
+                        // Concave, from inside or leaving c0 upwards.
+                        if (I.fb >= c1)
+                          return locate(+1, I.a, I.fa, I.b, I.fb);
+                        if (I.fb <= c0)
+                          {
+                            if (!up_possible && inside)
+                              return locate(-1, I.a, I.fa, I.b, I.fb);
+                            if (!up_possible && sampled && fm > c0)
+                              return locate(-1, m, fm, I.b, I.fb);
+                          }
+                        else
+                          {
+                            if (sampled && fm >= c1)
+                              return locate(+1, I.a, I.fa, m, fm);
+                            down_possible = false;
+                          }
+                      }
+                  }
+                  if (!up_possible && !down_possible)
+                    continue;
+
+                  if (!in_prefix && (increasing || decreasing))
+                    {
+                      // f(a) lies strictly inside the terrace (everything
+                      // before a has been dismissed), so a monotone f can only
+                      // reach the level ahead of it.
+                      if (increasing && I.fb >= c1)
+                        return locate(+1, I.a, I.fa, I.b, I.fb);
+                      if (decreasing && I.fb <= c0)
+                        return locate(-1, I.a, I.fa, I.b, I.fb);
+                      continue;
+                    }
+                }
+
+              const double resolution =
+                16. * epsilon * std::max(I.b, resolution_floor);
+              if (I.b - I.a <= resolution)
+                {
+                  if (in_prefix)
+                    {
+                      // Not separable from the departure root at s = 0 (a
+                      // tangential departure): accepted as part of the
+                      // departure.
+                      prefix_end = I.b;
+                      if (departure_sign > 0 && I.fb >= c1)
+                        return {+1, I.a};
+                      if (departure_sign < 0 && I.fb <= c0)
+                        return {-1, I.a};
+                      continue;
+                    }
+                  // Undecidable at the resolution: report a crossing here
+                  // (early, never late).
+                  const bool up =
+                    at_limit ||
+                    (up_possible && (!down_possible || std::abs(I.fa - c1) <=
+                                                         std::abs(I.fa - c0)));
+                  return {up ? +1 : -1, I.a};
+                }
+
+              const double mid = I.a + 0.5 * (I.b - I.a);
+              const double fm  = value_at(mid);
+              pending.push_back({mid, I.b, fm, I.fb});
+              pending.push_back({I.a, mid, I.fa, fm});
+            }
+
+          window_start = window_end;
+          f_start      = f_end;
+          window_length *= 2.;
+        }
+      return {0, end};
+    }
+  } // namespace
+
+
+
   Crossing
   find_first_crossing(const FreeFlight    &flight,
                       const CrossingQuery &query,
                       SearchStatistics    &statistics)
   {
-    const double c0  = query.lower_level;
-    const double c1  = query.upper_level;
-    const double end = query.horizon;
-    // The band around a level that counts as sitting on it: a few times the
-    // flight's round-off, so that enclosures (widened by that round-off
-    // themselves) can fit inside, and never less than a few units of
-    // round-off of the level itself, which no computed value of f can
-    // resolve (a flight that claims exact values, value_tolerance() = 0, but
-    // widens its enclosures by their rounding would otherwise crawl away from
-    // a level it departs from tangentially, one resolution at a time).
-    const double tolerance =
-      4. * std::max(flight.value_tolerance(),
-                    4. * epsilon * std::max(std::abs(c0), std::abs(c1)));
-    if (!(tolerance < 0.5 * (c1 - c0)))
-      throw SearchStalled("the round-off band of V along the flight, " +
-                          to_short_string(tolerance) +
-                          ", is not below half the energy step");
-    // f = +infinity where the configuration is inadmissible (beyond the
-    // flight's admissible limit); such intervals are never enclosed.
-    const auto value_at = [&](const double s) {
-      ++statistics.n_value_evaluations;
-      return flight.value(s);
-    };
-    const double f_zero = value_at(0.);
-    // The level the flight sits on at s = 0, if any: the departure level, or
-    // a level that f(0) lies within the band of.
-    const double sitting_level =
-      query.departure == Departure::from_lower_level ?
-        c0 :
-      query.departure == Departure::from_upper_level ?
-        c1 :
-      std::abs(f_zero - c0) <= tolerance ?
-        c0 :
-      std::abs(f_zero - c1) <= tolerance ?
-        c1 :
-        std::numeric_limits<double>::quiet_NaN();
-    const bool sitting = !std::isnan(sitting_level);
-    // The side of the sitting level the terrace lies on: +1 on the lower
-    // level, -1 on the upper one, 0 strictly inside. A flight that starts
-    // interior but within the band of a level (a run whose initial V lies on
-    // a level, to round-off) is treated as departing from it: the flight is
-    // on the level, and moving out of the terrace through it is a crossing
-    // at once, not a crawl along the band.
-    const int departure_sign = !sitting ? 0 : sitting_level == c0 ? +1 : -1;
-    // On [0, prefix_end] f is proven not to leave the sitting level and come
-    // back: it stays within the tolerance of it, or moves away monotonically.
-    double       prefix_end = 0.;
-    const double resolution_floor =
-      std::max(query.first_window, std::numeric_limits<double>::min());
-
-    std::vector<PendingInterval> pending;
-    std::uint64_t                n_examined = 0;
-    double window_start = 0., window_length = std::min(query.first_window, end);
-    if (!(window_length > 0.))
-      window_length = end;
-    double f_start = f_zero;
-
-    while (window_start < end)
-      {
-        const double window_end = (window_start + window_length >= end) ?
-                                    end :
-                                    window_start + window_length;
-        const double f_end      = value_at(window_end);
-        pending.push_back({window_start, window_end, f_start, f_end});
-
-        while (!pending.empty())
-          {
-            const PendingInterval I = pending.back();
-            pending.pop_back();
-            if (++n_examined > max_intervals_examined)
-              throw SearchStalled(
-                "the first-crossing search examined " +
-                std::to_string(max_intervals_examined) +
-                " intervals without deciding, the last at flight parameter "
-                "s = " +
-                to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
-                " wide");
-            statistics.max_intervals_in_one_search =
-              std::max(statistics.max_intervals_in_one_search, n_examined);
-            // The rules for the sitting level apply while f(a) is still
-            // within its band; beyond, f(a) is strictly inside the terrace.
-            const bool in_prefix = sitting && I.a == prefix_end &&
-                                   std::abs(I.fa - sitting_level) <= tolerance;
-            const bool at_limit    = !std::isfinite(I.fb);
-            bool       up_possible = true, down_possible = true;
-
-            if (!at_limit)
-              {
-                const LineEnclosure enclosure = flight.enclose(I.a, I.b);
-                ++statistics.n_enclosures;
-                const bool increasing = enclosure.derivative.lower > 0.;
-                const bool decreasing = enclosure.derivative.upper < 0.;
-                // The unique crossing in [a, b] of the level in @p direction,
-                // f(a) = fa on the near side of it, f(b) = fb beyond.
-                const auto locate = [&](const int    direction,
-                                        const double a,
-                                        const double fa,
-                                        const double b,
-                                        const double fb) -> Crossing {
-                  return {direction,
-                          locate_crossing(flight,
-                                          direction > 0 ? c1 : c0,
-                                          a,
-                                          b,
-                                          fa,
-                                          fb,
-                                          enclosure,
-                                          statistics)};
-                };
-
-                if (in_prefix &&
-                    enclosure.value.lower >= sitting_level - tolerance &&
-                    enclosure.value.upper <= sitting_level + tolerance)
-                  {
-                    // Still sitting on the level, within round-off.
-                    prefix_end = I.b;
-                    continue;
-                  }
-
-                if (in_prefix && departure_sign != 0 &&
-                    (departure_sign > 0 ? increasing : decreasing))
-                  {
-                    // Moving away from the departure level all the way from s =
-                    // 0: only the level ahead can be reached, and only if f(b)
-                    // reaches it.
-                    prefix_end = I.b;
-                    if (departure_sign > 0 && I.fb >= c1)
-                      return locate(+1, I.a, I.fa, I.b, I.fb);
-                    if (departure_sign < 0 && I.fb <= c0)
-                      return locate(-1, I.a, I.fa, I.b, I.fb);
-                    continue;
-                  }
-
-                if (in_prefix && departure_sign != 0 &&
-                    (departure_sign > 0 ? decreasing : increasing))
-                  {
-                    // Still within the band of the departure level, and proven
-                    // to move back through it: f came back within the band
-                    // (a dip or bump shallower than the round-off), so the
-                    // departure level is the one reached, at the latest where
-                    // f(b) is beyond it; if f(a) is beyond it already, the
-                    // flight is on it at a.
-                    const int direction = -departure_sign;
-                    if (direction * (I.fb - sitting_level) >= 0.)
-                      {
-                        if (direction * (I.fa - sitting_level) < 0.)
-                          return locate(direction, I.a, I.fa, I.b, I.fb);
-                        return {direction, I.a};
-                      }
-                    prefix_end = I.b;
-                    continue;
-                  }
-
-                // A NaN bound proves nothing: the level stays possible.
-                up_possible   = !(enclosure.value.upper < c1);
-                down_possible = !(enclosure.value.lower > c0);
-                // Convexity: where f is convex its sublevel sets are
-                // intervals, so on [a, b] it stays below max(f(a), f(b)) and
-                // crosses a level at most once going down and once going up;
-                // where it is concave, the mirror image. This decides
-                // intervals that hold a turning point of f, where the slope
-                // has no sign. It applies where f(a) lies strictly inside the
-                // terrace (outside the prefix: everything before a has been
-                // dismissed) or on the level f departs from, moving away.
-                {
-                  const double m     = enclosure.sample_point;
-                  const double fm    = enclosure.sample.value;
-                  const bool sampled = m > I.a && m < I.b && std::isfinite(fm);
-                  const bool inside  = !in_prefix;
-                  if (enclosure.curvature.lower > 0. &&
-                      (inside || (departure_sign < 0 && in_prefix)))
-                    {
-                      // Convex, from inside or leaving c1 downwards.
-                      if (I.fb <= c0)
-                        return locate(-1, I.a, I.fa, I.b, I.fb);
-                      if (I.fb >= c1)
-                        {
-                          if (!down_possible && inside)
-                            return locate(+1, I.a, I.fa, I.b, I.fb);
-                          if (!down_possible && sampled && fm < c1)
-                            return locate(+1, m, fm, I.b, I.fb);
-                        }
-                      else
-                        {
-                          if (sampled && fm <= c0)
-                            return locate(-1, I.a, I.fa, m, fm);
-                          up_possible = false;
-                        }
-                    }
-                  else if (enclosure.curvature.upper < 0. &&
-                           (inside || (departure_sign > 0 && in_prefix)))
-                    {
-                      // Concave, from inside or leaving c0 upwards.
-                      if (I.fb >= c1)
-                        return locate(+1, I.a, I.fa, I.b, I.fb);
-                      if (I.fb <= c0)
-                        {
-                          if (!up_possible && inside)
-                            return locate(-1, I.a, I.fa, I.b, I.fb);
-                          if (!up_possible && sampled && fm > c0)
-                            return locate(-1, m, fm, I.b, I.fb);
-                        }
-                      else
-                        {
-                          if (sampled && fm >= c1)
-                            return locate(+1, I.a, I.fa, m, fm);
-                          down_possible = false;
-                        }
-                    }
-                }
-                if (!up_possible && !down_possible)
-                  continue;
-
-                if (!in_prefix && (increasing || decreasing))
-                  {
-                    // f(a) lies strictly inside the terrace (everything before
-                    // a has been dismissed), so a monotone f can only reach the
-                    // level ahead of it.
-                    if (increasing && I.fb >= c1)
-                      return locate(+1, I.a, I.fa, I.b, I.fb);
-                    if (decreasing && I.fb <= c0)
-                      return locate(-1, I.a, I.fa, I.b, I.fb);
-                    continue;
-                  }
-              }
-
-            const double resolution =
-              16. * epsilon * std::max(I.b, resolution_floor);
-            if (I.b - I.a <= resolution)
-              {
-                if (in_prefix)
-                  {
-                    // Not separable from the departure root at s = 0 (a
-                    // tangential departure): accepted as part of the departure.
-                    prefix_end = I.b;
-                    if (departure_sign > 0 && I.fb >= c1)
-                      return {+1, I.a};
-                    if (departure_sign < 0 && I.fb <= c0)
-                      return {-1, I.a};
-                    continue;
-                  }
-                // Undecidable at the resolution: report a crossing here (early,
-                // never late).
-                const bool up =
-                  at_limit ||
-                  (up_possible && (!down_possible ||
-                                   std::abs(I.fa - c1) <= std::abs(I.fa - c0)));
-                return {up ? +1 : -1, I.a};
-              }
-
-            const double mid = I.a + 0.5 * (I.b - I.a);
-            const double fm  = value_at(mid);
-            pending.push_back({mid, I.b, fm, I.fb});
-            pending.push_back({I.a, mid, I.fa, fm});
-          }
-
-        window_start = window_end;
-        f_start      = f_end;
-        window_length *= 2.;
-      }
-    return {0, end};
+    const Crossing crossing =
+      first_crossing_in_windows(flight, query, statistics);
+    if (crossing.direction != 0 && crossing.s > query.horizon)
+      return {0, query.horizon};
+    return crossing;
   }
 } // namespace estep

@@ -86,6 +86,10 @@ grep -Eq '"cell kernels": "(x86-64(-v[34])?|portable C\+\+)"' run/summary.json |
   fail "summary.json lacks the cell kernels' instruction set"
 [[ $(wc -l < run/history.csv) == 6 ]] || fail "history.csv should have a header and 5 rows (t = 0, 0.5, ..., 2)"
 python3 -c "import json,sys; json.load(open('run/summary.json'))" || fail "summary.json is not valid JSON"
+# A run to a later end time passes through the same states: its rows before the earlier end
+# time are those of the shorter run to the last digit (the search's windows do not depend on it).
+expect 0 "completed at t = 3" -- run.prm -s "Time integration/End time=3" -s "Output directory=longer"
+[[ $(head -n 5 longer/history.csv) == "$(head -n 5 run/history.csv)" ]] || fail "the run to t = 3 differs from the run to t = 2 before t = 2"
 # A history interval of 0: the start and the end.
 expect 0 "completed at t = 2" -- run.prm -s "Output/History interval=0" -s "Output directory=ends"
 [[ $(cut -d, -f1 ends/history.csv | tail -n +2 | tr '\n' ' ') == "0 2 " ]] || fail "history.csv with interval 0 should have the rows t = 0 and 2: $(cut -d, -f1 ends/history.csv)"

@@ -178,7 +178,9 @@ namespace estep
     double    energy_scale = 0.;
     long long level        = 0;
     Departure departure    = Departure::interior;
-    double    last_flight  = 0.;
+    /** The last flight of positive length (0 before the first): twice it is
+     * the next search's first window. */
+    double last_flight = 0.;
 
     // The last flight: it started at (t_previous, q_start) with velocity
     // v_flight on level level_flight.

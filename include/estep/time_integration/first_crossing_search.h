@@ -34,7 +34,10 @@ namespace estep
     /** The search looks at (0, horizon] only. */
     double horizon;
     /** Length of the first search window (e.g. the previous step); windows then
-     * double. */
+     * double, the last reaching past the horizon, so that which crossing is
+     * found before the horizon, to the last bit, does not depend on it (a
+     * run to a later end time passes through the same states). At most 0:
+     * the horizon. */
     double first_window;
   };
 
