@@ -3,6 +3,9 @@
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
 
+#include <sstream>
+#include <stdexcept>
+
 namespace estep
 {
   PluginRegistry<ProblemFactory> &
@@ -34,12 +37,60 @@ namespace estep
 
 
 
+  std::map<std::string, std::vector<std::string>>
+  printed_subsections(const dealii::ParameterHandler &prm,
+                      const std::string              &section)
+  {
+    std::ostringstream text;
+    prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+    std::istringstream in(text.str());
+    const std::string  indent  = section.empty() ? "" : "  ";
+    const std::string  opening = indent + "subsection ";
+    std::map<std::string, std::vector<std::string>> sections;
+    std::vector<std::string>                       *current   = nullptr;
+    bool                                            in_parent = section.empty();
+    for (std::string line; std::getline(in, line);)
+      if (!section.empty() && line == "subsection " + section)
+        in_parent = true;
+      else if (!section.empty() && line == "end")
+        in_parent = false;
+      else if (in_parent && current == nullptr && line.rfind(opening, 0) == 0)
+        current = &sections[line.substr(opening.size())];
+      else if (current != nullptr && line == indent + "end")
+        current = nullptr;
+      else if (current != nullptr)
+        current->push_back(line);
+    return sections;
+  }
+
+
+
   Problem
   create_problem(dealii::ParameterHandler &prm)
   {
     prm.enter_subsection("Problem");
     const std::string name = prm.get("System");
     prm.leave_subsection();
-    return problem_registry().get(name, "Problem/System").create(prm);
+    const auto &chosen = problem_registry().get(name, "Problem/System");
+
+    // The subsections that only the other problems declare keep their
+    // defaults: a setting there would be ignored.
+    const auto sections_of = [](const auto &plugin) {
+      dealii::ParameterHandler declared;
+      if (plugin.declare_parameters != nullptr)
+        plugin.declare_parameters(declared);
+      return printed_subsections(declared);
+    };
+    const auto own   = sections_of(chosen);
+    const auto given = printed_subsections(prm);
+    for (const auto &other : problem_registry().plugins())
+      for (const auto &[section, defaults] : sections_of(other))
+        if (own.count(section) == 0 && given.count(section) > 0 &&
+            given.at(section) != defaults)
+          throw std::runtime_error(section + ": Problem/System = " + name +
+                                   " does not read this subsection (" +
+                                   other.name +
+                                   " does); a setting there would be ignored.");
+    return chosen.create(prm);
   }
 } // namespace estep

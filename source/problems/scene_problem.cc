@@ -439,30 +439,6 @@ namespace estep
       return result;
     }
 
-    /** The lines of each subsection of Scene in @p prm (printed without
-     * documentation), by its name. */
-    std::map<std::string, std::vector<std::string>>
-    scene_subsections(const dealii::ParameterHandler &prm)
-    {
-      std::ostringstream text;
-      prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
-      std::istringstream                              in(text.str());
-      std::map<std::string, std::vector<std::string>> sections;
-      const std::string                               opening = "  subsection ";
-      bool                                            in_scene = false;
-      std::vector<std::string>                       *section  = nullptr;
-      for (std::string line; std::getline(in, line);)
-        if (line == "subsection Scene" || line == "end")
-          in_scene = (line != "end");
-        else if (in_scene && line.rfind(opening, 0) == 0)
-          section = &sections[line.substr(opening.size())];
-        else if (in_scene && line == "  end")
-          section = nullptr;
-        else if (section != nullptr)
-          section->push_back(line);
-      return sections;
-    }
-
     /**
      * Throws if a body of the scene has every entry at its default: its
      * subsection is missing from the input (Number of bodies larger than
@@ -479,8 +455,8 @@ namespace estep
       defaults.leave_subsection();
       defaults.leave_subsection();
       const std::vector<std::string> default_body =
-        scene_subsections(defaults)[body_section(0)];
-      auto sections = scene_subsections(prm);
+        printed_subsections(defaults, "Scene")[body_section(0)];
+      auto sections = printed_subsections(prm, "Scene");
       for (unsigned int b = 0; b < n_bodies; ++b)
         if (sections[body_section(b)] == default_body)
           throw std::runtime_error(

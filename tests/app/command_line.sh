@@ -209,6 +209,9 @@ balls=("$ESTEP_SOURCE_DIR/parameter_files/ball_collision.prm" -s "Postprocessors
 expect 1 "Colliding balls/Mesh size: gmsh could not mesh a ball with the mesh size 100 \(relative to the radius\): " -- "${balls[@]}" -s "Colliding balls/Mesh size=100"
 expect 1 "Colliding balls/Mesh size: must be positive\.$" -- "${balls[@]}" -s "Colliding balls/Mesh size=0"
 expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "Contact/Mode=impenetrability"
+# A subsection that only other problems read keeps its defaults.
+expect 1 "Scene: Problem/System = elastic body does not read this subsection \(scene does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Scene/Gravity=0, 0, -9.8"
+expect 1 "Contact: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Contact/Self contact=true"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
 expect 1 "has no fields to write" -- run.prm -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"

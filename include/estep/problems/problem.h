@@ -5,8 +5,10 @@
 #include <estep/base/plugin_registry.h>
 #include <estep/systems/mechanical_system.h>
 
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace estep
 {
@@ -43,7 +45,20 @@ namespace estep
   void
   declare_problem_parameters(dealii::ParameterHandler &prm);
 
-  /** Build the problem chosen in `Problem/System`. */
+  /**
+   * The lines of each subsection of @p prm as deal.II prints them (ShortPRM:
+   * the values, without documentation), by name: the top-level subsections,
+   * or with @p section those inside the top-level subsection @p section. Two
+   * handlers of the same declarations print a subsection alike exactly when
+   * its entries have the same values.
+   */
+  std::map<std::string, std::vector<std::string>>
+  printed_subsections(const dealii::ParameterHandler &prm,
+                      const std::string              &section = "");
+
+  /** Build the problem chosen in `Problem/System`. Throws if a top-level
+   * subsection that only the other problems read is not at its defaults
+   * (a setting the chosen problem would ignore). */
   Problem
   create_problem(dealii::ParameterHandler &prm);
 } // namespace estep
