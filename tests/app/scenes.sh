@@ -228,7 +228,7 @@ expect_error "Scene/Body 4/Mesh: .*cannot open the gmsh file 'missing.msh'" "${c
 printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n$Elements\n1\n1 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n' > hexahedron.msh
 expect_error "Scene/Body 4/Mesh: The mesh has a cell that is not a tetrahedron" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=hexahedron.msh"
 expect_error "Scene/Body 1/Initial velocity/Function expression: <sqrt\(> cannot be evaluated" "${cradle[@]}" -s "Scene/Body 1/Initial velocity/Type=function" -s "Scene/Body 1/Initial velocity/Function expression=sqrt("
-printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
+printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Scene\n  subsection Body 1\n    subsection Mesh\n      set Subdivisions = 2\n    end\n  end\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
 expect_error "Contact/Mode: a scene of one body without obstacles has nothing to contact" one_body.prm
 [[ ! -e bad ]] || fail "a scene that failed at set-up wrote output"
 
