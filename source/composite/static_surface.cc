@@ -95,12 +95,10 @@ namespace estep
       else if (word == "facet")
         {
           expect(place == Place::in_solid);
-          std::array<double, 3> normal; // not used
-          if (!(in >> word) || word != "normal" ||
-              !(in >> normal[0] >> normal[1] >> normal[2]))
-            throw std::runtime_error(what +
-                                     "a facet without 'normal' and three "
-                                     "numbers.");
+          if (!(in >> word) || word != "normal")
+            throw std::runtime_error(what + "'facet' without 'normal'.");
+          std::string normal; // not used (exporters write NaN for some)
+          std::getline(in, normal);
           place = Place::in_facet;
         }
       else if (word == "outer")

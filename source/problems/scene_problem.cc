@@ -440,9 +440,11 @@ namespace estep
     }
 
     /**
-     * Throws if a body of the scene has every entry at its default: its
-     * subsection is missing from the input (Number of bodies larger than
-     * the bodies given), and the default body would join the scene unseen.
+     * Throws if a body of the scene after the first has every entry at its
+     * default: its subsection is missing from the input (Number of bodies
+     * larger than the bodies given), and the default body would join the
+     * scene unseen. (The first may be the default body: a scene printed by
+     * --print-parameters is a valid input.)
      */
     void
     check_every_body_is_given(const dealii::ParameterHandler &prm,
@@ -457,15 +459,13 @@ namespace estep
       const std::vector<std::string> default_body =
         printed_subsections(defaults, "Scene")[body_section(0)];
       auto sections = printed_subsections(prm, "Scene");
-      for (unsigned int b = 0; b < n_bodies; ++b)
+      for (unsigned int b = 1; b < n_bodies; ++b)
         if (sections[body_section(b)] == default_body)
           throw std::runtime_error(
             "Scene/" + body_section(b) +
             ": not given (every entry at its default); Number of bodies = " +
-            std::to_string(n_bodies) + " asks for the subsections " +
-            (n_bodies == 1 ? "Body 1" :
-                             "Body 1 to " + body_section(n_bodies - 1)) +
-            ".");
+            std::to_string(n_bodies) + " asks for the subsections Body 1 to " +
+            body_section(n_bodies - 1) + ".");
     }
 
     Problem

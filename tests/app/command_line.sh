@@ -212,6 +212,10 @@ expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "
 # A subsection that only other problems read keeps its defaults.
 expect 1 "Scene: Problem/System = elastic body does not read this subsection \(scene does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Scene/Gravity=0, 0, -9.8"
 expect 1 "Contact: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Contact/Self contact=true"
+expect 1 "Material: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Material/Density=5000"
+# A scene as --print-parameters prints it (one body, at its defaults) is a valid input.
+"$ESTEP" --print-parameters -s "Problem/System=scene" > scene_defaults.prm
+expect 0 "completed at t = 0.01" -- scene_defaults.prm -s "Contact/Mode=none" -s "Time integration/End time=0.01" -s "Output directory=scene_defaults"
 # A run that fails at set-up leaves an earlier run in the same directory alone.
 expect 1 "has no fields to write" -- run.prm -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=0.1"
 cmp -s summary.before run/summary.json || fail "a failed run changed the output of an earlier run"

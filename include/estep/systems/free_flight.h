@@ -102,8 +102,10 @@ namespace estep
 
     /**
      * The end of the admissible part of the line: V is finite on [0,
-     * admissible_limit()) and the search never looks beyond it (e.g. the first
-     * element inversion of a finite-element body). Infinity by default.
+     * admissible_limit()) (e.g. before the first element inversion of a
+     * finite-element body); beyond it value() is +infinity and enclose() may
+     * not bound anything, which the search treats as a level reached before.
+     * Infinity by default.
      */
     virtual double
     admissible_limit() const

@@ -31,7 +31,8 @@ namespace estep
     double    lower_level;
     double    upper_level;
     Departure departure;
-    /** The search looks at (0, horizon] only. */
+    /** The crossings the search reports lie in (0, horizon]; its last window
+     * may look past it (see first_window). */
     double horizon;
     /** Length of the first search window (e.g. the previous step); windows then
      * double, the last reaching past the horizon, so that which crossing is
