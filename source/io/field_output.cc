@@ -201,9 +201,10 @@ namespace estep
       xdmf.fields    = snapshot_fields;
       xdmf.meshes.clear();
       const std::filesystem::path file = directory / xdmf.mesh_file;
+      const std::string           part = file.string() + ".part";
       UnfinishedFiles             unfinished;
-      unfinished.add(file.string() + ".part");
-      Hdf5File mesh(file.string() + ".part");
+      unfinished.add(part);
+      Hdf5File mesh(part);
       for (unsigned int b = 0; b < bodies.n_bodies(); ++b)
         {
           const P1CellData &cells = bodies.body(b).cell_data();
@@ -254,7 +255,7 @@ namespace estep
       mesh.close();
       unfinished.keep();
       if (rank == 0)
-        std::filesystem::rename(file.string() + ".part", file);
+        std::filesystem::rename(part, file);
     }
   };
 

@@ -49,8 +49,8 @@ namespace estep
     // Without HDF5's clean-up at exit: a file that a failed write left open
     // would be flushed again there, and the process would crash instead of
     // ending with its message. A completed file is closed by close().
-    static const bool without_clean_up_at_exit = (H5dont_atexit() >= 0);
-    (void)without_clean_up_at_exit;
+    [[maybe_unused]] static const herr_t without_clean_up_at_exit =
+      H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     // A file of an earlier run is removed first: truncating it would make
     // ext4 flush the new one to disk (seconds per run on a busy disk).

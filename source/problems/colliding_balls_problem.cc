@@ -24,12 +24,7 @@ namespace estep
     {
       using dealii::Patterns::Double;
       const double max = Double::max_double_value;
-      // The subsection Material that every problem declares
-      // (declare_problem_parameters()), declared again as this problem's: it
-      // reads it, and for the others it must keep its defaults.
-      prm.enter_subsection("Material");
-      declare_material_parameters(prm);
-      prm.leave_subsection();
+      declare_material_subsection(prm); // this problem reads it
       prm.enter_subsection("Colliding balls");
       {
         prm.declare_entry("Radius",

@@ -32,12 +32,7 @@ namespace estep
       const double max = Double::max_double_value;
       const List   point(Double(-max, max), 3, 3, ",");
 
-      // The subsection Material that every problem declares
-      // (declare_problem_parameters()), declared again as this problem's: it
-      // reads it, and for the others it must keep its defaults.
-      prm.enter_subsection("Material");
-      declare_material_parameters(prm);
-      prm.leave_subsection();
+      declare_material_subsection(prm); // this problem reads it
       ContactParameters::declare_parameters(prm);
       prm.enter_subsection("Elastic body");
       {

@@ -29,10 +29,18 @@ namespace estep
       "each reads its own subsection:" +
         problem_registry().descriptions());
     prm.leave_subsection();
+    declare_material_subsection(prm);
+    problem_registry().declare_parameters(prm);
+  }
+
+
+
+  void
+  declare_material_subsection(dealii::ParameterHandler &prm)
+  {
     prm.enter_subsection("Material");
     declare_material_parameters(prm);
     prm.leave_subsection();
-    problem_registry().declare_parameters(prm);
   }
 
 

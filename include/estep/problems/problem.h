@@ -56,6 +56,15 @@ namespace estep
   printed_subsections(const dealii::ParameterHandler &prm,
                       const std::string              &section = "");
 
+  /**
+   * Declare the top-level subsection `Material` (declare_material_parameters())
+   * that the problems with one material read: every problem's parameters
+   * have it, and a problem that reads it declares it as its own too, so
+   * that for the others it must keep its defaults (create_problem()).
+   */
+  void
+  declare_material_subsection(dealii::ParameterHandler &prm);
+
   /** Build the problem chosen in `Problem/System`. Throws if a top-level
    * subsection that only the other problems read is not at its defaults
    * (a setting the chosen problem would ignore). */
