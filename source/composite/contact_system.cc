@@ -1,3 +1,5 @@
+#include <estep/base/distributed_blocks.h>
+#include <estep/base/parallel_blocks.h>
 #include <estep/composite/contact_system.h>
 #include <estep/contact/first_contact.h>
 #include <estep/contact/penalty_contact.h>
@@ -33,6 +35,27 @@ namespace estep
       return {std::min(x.lower, y.lower), std::max(x.upper, y.upper)};
     }
 
+    /**
+     * work(b) for every body b < @p n_bodies. On one process the bodies run
+     * side by side on the threads: each body's evaluation touches only its
+     * own data, and every caller combines the bodies' results in body order
+     * afterwards, so the bits do not depend on the threads. On several
+     * processes in body order, one after the other: each body's loops end in
+     * collective calls, which every process must make in the same order.
+     */
+    void
+    for_each_body(const unsigned int                       n_bodies,
+                  const std::function<void(unsigned int)> &work)
+    {
+      if (rank_count() > 1)
+        {
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            work(b);
+          return;
+        }
+      for_each_block(n_bodies, work);
+    }
+
     /** The free flight of a ContactSystem: the bodies' flights plus the
      * penalty flight. */
     class ContactFreeFlight : public FreeFlight
@@ -42,11 +65,12 @@ namespace estep
                         const contact::PenaltyContact *penalty,
                         const Vector                  &q,
                         const Vector                  &v)
+        : bodies(system.n_bodies())
       {
-        for (unsigned int b = 0; b < system.n_bodies(); ++b)
-          bodies.push_back(
-            system.body(b).make_free_flight(system.extract(q, b),
-                                            system.extract(v, b)));
+        for_each_body(bodies.size(), [&](const unsigned int b) {
+          bodies[b] = system.body(b).make_free_flight(system.extract(q, b),
+                                                      system.extract(v, b));
+        });
         if (penalty != nullptr)
           penalty_flight = std::make_unique<contact::PenaltyFlight>(*penalty,
                                                                     q.data(),
@@ -57,9 +81,13 @@ namespace estep
       double
       value(const double s) const override
       {
+        std::vector<double> values(bodies.size());
+        for_each_body(bodies.size(), [&](const unsigned int b) {
+          values[b] = bodies[b]->value(s);
+        });
         double total = 0.;
-        for (const auto &f : bodies)
-          total += f->value(s);
+        for (const double value : values)
+          total += value;
         if (!std::isfinite(total))
           return infinity;
         if (penalty_flight)
@@ -70,10 +98,13 @@ namespace estep
       LineValue
       value_and_derivative(const double s) const override
       {
+        std::vector<LineValue> values(bodies.size());
+        for_each_body(bodies.size(), [&](const unsigned int b) {
+          values[b] = bodies[b]->value_and_derivative(s);
+        });
         LineValue total = {0., 0.};
-        for (const auto &f : bodies)
+        for (const LineValue &l : values)
           {
-            const LineValue l = f->value_and_derivative(s);
             total.value += l.value;
             total.derivative += l.derivative;
           }
@@ -115,14 +146,24 @@ namespace estep
         LineEnclosure  sum       = {{0., 0.}, {0., 0.}};
         Interval       curvature = {0., 0.};
         LineValue      at_m      = {0., 0.};
-        for (const auto &f : bodies)
+        // Each body's enclosure and its value at the centre, then their sum
+        // in body order.
+        std::vector<LineEnclosure> parts(bodies.size());
+        std::vector<LineValue>     at_centres(bodies.size());
+        for_each_body(bodies.size(), [&](const unsigned int k) {
+          parts[k]      = bodies[k]->enclose(a, b);
+          at_centres[k] = parts[k].sample_point == m ?
+                            parts[k].sample :
+                            bodies[k]->value_and_derivative(m);
+        });
+        for (unsigned int k = 0; k < bodies.size(); ++k)
           {
-            const LineEnclosure e = f->enclose(a, b);
+            const auto          &f         = bodies[k];
+            const LineEnclosure &e         = parts[k];
+            const LineValue     &at_centre = at_centres[k];
             sum.value += e.value;
             sum.derivative += e.derivative;
             curvature += e.curvature;
-            const LineValue at_centre =
-              e.sample_point == m ? e.sample : f->value_and_derivative(m);
             at_m.value += at_centre.value;
             at_m.derivative += at_centre.derivative;
             // The round-off of a body's values: its tolerance at s = 0 plus
@@ -184,9 +225,13 @@ namespace estep
       double
       admissible_limit() const override
       {
+        std::vector<double> limits(bodies.size());
+        for_each_body(bodies.size(), [&](const unsigned int b) {
+          limits[b] = bodies[b]->admissible_limit();
+        });
         double limit = infinity;
-        for (const auto &f : bodies)
-          limit = std::min(limit, f->admissible_limit());
+        for (const double l : limits)
+          limit = std::min(limit, l);
         return limit;
       }
 
@@ -360,12 +405,14 @@ namespace estep
   double
   ContactSystem::energy(const Vector &q) const
   {
+    std::vector<double> energies(bodies.size());
+    for_each_body(bodies.size(), [&](const unsigned int b) {
+      scratch_q[b] = extract(q, b);
+      energies[b]  = bodies[b]->energy(scratch_q[b]);
+    });
     double total = 0.;
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        scratch_q[b] = extract(q, b);
-        total += bodies[b]->energy(scratch_q[b]);
-      }
+    for (const double energy : energies)
+      total += energy;
     if (!std::isfinite(total))
       return infinity;
     return total + contact_energy(q);
@@ -377,13 +424,12 @@ namespace estep
   ContactSystem::gradient(const Vector &q, Vector &g) const
   {
     g.reinit(q.size());
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        scratch_q[b] = extract(q, b);
-        bodies[b]->gradient(scratch_q[b], scratch_g[b]);
-        for (unsigned int i = 0; i < scratch_g[b].size(); ++i)
-          g[3 * offsets[b] + i] = scratch_g[b][i];
-      }
+    for_each_body(bodies.size(), [&](const unsigned int b) {
+      scratch_q[b] = extract(q, b);
+      bodies[b]->gradient(scratch_q[b], scratch_g[b]);
+      for (unsigned int i = 0; i < scratch_g[b].size(); ++i)
+        g[3 * offsets[b] + i] = scratch_g[b][i];
+    });
     if (penalty)
       penalty->add_gradient(q.data(), q.size(), g.data());
   }

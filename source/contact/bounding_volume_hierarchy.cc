@@ -119,34 +119,40 @@ namespace estep
         throw std::invalid_argument(
           "BoundingVolumeHierarchy: margin and s_max must be non-negative");
       boxes.resize(triangles.size());
-      for (std::size_t t = 0; t < triangles.size(); ++t)
-        {
-          BoundingBox &b = boxes[t];
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              b.lower[k] = std::numeric_limits<double>::infinity();
-              b.upper[k] = -std::numeric_limits<double>::infinity();
-            }
-          for (const unsigned int i : triangles[t])
+      // Each box on its own: in parallel blocks, the same bits on any number
+      // of threads.
+      const unsigned int n_triangles = triangles.size();
+      for_each_block(n_blocks(n_triangles), [&](const unsigned int block) {
+        const BlockRange range = block_range(block, n_triangles);
+        for (unsigned int t = range.begin; t < range.end; ++t)
+          {
+            BoundingBox &b = boxes[t];
             for (unsigned int k = 0; k < 3; ++k)
               {
-                const double x = q[3 * i + k];
-                b.lower[k]     = std::min(b.lower[k], x);
-                b.upper[k]     = std::max(b.upper[k], x);
-                if (v != nullptr)
-                  {
-                    const double y = x + s_max * v[3 * i + k];
-                    b.lower[k]     = std::min(b.lower[k], round_down(y));
-                    b.upper[k]     = std::max(b.upper[k], round_up(y));
-                  }
+                b.lower[k] = std::numeric_limits<double>::infinity();
+                b.upper[k] = -std::numeric_limits<double>::infinity();
               }
-          if (margin > 0.)
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                b.lower[k] = round_down(b.lower[k] - margin);
-                b.upper[k] = round_up(b.upper[k] + margin);
-              }
-        }
+            for (const unsigned int i : triangles[t])
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const double x = q[3 * i + k];
+                  b.lower[k]     = std::min(b.lower[k], x);
+                  b.upper[k]     = std::max(b.upper[k], x);
+                  if (v != nullptr)
+                    {
+                      const double y = x + s_max * v[3 * i + k];
+                      b.lower[k]     = std::min(b.lower[k], round_down(y));
+                      b.upper[k]     = std::max(b.upper[k], round_up(y));
+                    }
+                }
+            if (margin > 0.)
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  b.lower[k] = round_down(b.lower[k] - margin);
+                  b.upper[k] = round_up(b.upper[k] + margin);
+                }
+          }
+      });
     }
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Threads: a run gives the same trajectory to the last bit on 1, 2 and 3 threads (the loops over
-# cells sum fixed blocks of cells in block order), with and without contact, and a checkpoint
+# cells sum fixed blocks of cells in block order; the bodies of a scene are evaluated side by side
+# and their results added in body order), with and without contact, and a checkpoint
 # written on 2 threads resumes on 1 to the same end. Compared: the final checkpoint (positions,
 # velocities, terrace level, counters, the postprocessors' states; it records only the entries
 # that fix the trajectory, not the threads) and history.csv, byte for byte.
@@ -48,6 +49,10 @@ balls=("$files/ball_collision.prm" --set "Colliding balls/Mesh size=0.2"
        --set "Time integration/End time=0.125")
 same_on_threads penalty "${balls[@]}"
 same_on_threads impenetrable "${balls[@]}" --set "Contact/Mode=impenetrability"
+
+# Eight balls falling on a floor: bodies of one block of cells each, which the threads share out
+# among themselves (the bodies' results are added in body order).
+same_on_threads eight-balls "$files/scene_eight_balls.prm" --set "Time integration/End time=0.1"
 
 # A run on 2 threads killed (SIGKILL) after its first checkpoint, resumed on 1.
 "$ESTEP" "${cube[@]}" --threads 2 --set "Output directory=resumed" > /dev/null 2>&1 &
