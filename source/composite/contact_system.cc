@@ -56,6 +56,18 @@ namespace estep
       for_each_block(n_bodies, work);
     }
 
+    /** part(b) of every body b < @p n_bodies, computed by for_each_body(), in
+     * body order. */
+    template <typename T, typename Part>
+    std::vector<T>
+    body_parts(const unsigned int n_bodies, const Part &part)
+    {
+      std::vector<T> parts(n_bodies);
+      for_each_body(n_bodies,
+                    [&](const unsigned int b) { parts[b] = part(b); });
+      return parts;
+    }
+
     /** The free flight of a ContactSystem: the bodies' flights plus the
      * penalty flight. */
     class ContactFreeFlight : public FreeFlight
@@ -81,12 +93,11 @@ namespace estep
       double
       value(const double s) const override
       {
-        std::vector<double> values(bodies.size());
-        for_each_body(bodies.size(), [&](const unsigned int b) {
-          values[b] = bodies[b]->value(s);
-        });
         double total = 0.;
-        for (const double value : values)
+        for (const double value :
+             body_parts<double>(bodies.size(), [&](const unsigned int b) {
+               return bodies[b]->value(s);
+             }))
           total += value;
         if (!std::isfinite(total))
           return infinity;
@@ -98,12 +109,11 @@ namespace estep
       LineValue
       value_and_derivative(const double s) const override
       {
-        std::vector<LineValue> values(bodies.size());
-        for_each_body(bodies.size(), [&](const unsigned int b) {
-          values[b] = bodies[b]->value_and_derivative(s);
-        });
         LineValue total = {0., 0.};
-        for (const LineValue &l : values)
+        for (const LineValue &l :
+             body_parts<LineValue>(bodies.size(), [&](const unsigned int b) {
+               return bodies[b]->value_and_derivative(s);
+             }))
           {
             total.value += l.value;
             total.derivative += l.derivative;
@@ -225,12 +235,11 @@ namespace estep
       double
       admissible_limit() const override
       {
-        std::vector<double> limits(bodies.size());
-        for_each_body(bodies.size(), [&](const unsigned int b) {
-          limits[b] = bodies[b]->admissible_limit();
-        });
         double limit = infinity;
-        for (const double l : limits)
+        for (const double l :
+             body_parts<double>(bodies.size(), [&](const unsigned int b) {
+               return bodies[b]->admissible_limit();
+             }))
           limit = std::min(limit, l);
         return limit;
       }
@@ -405,13 +414,12 @@ namespace estep
   double
   ContactSystem::energy(const Vector &q) const
   {
-    std::vector<double> energies(bodies.size());
-    for_each_body(bodies.size(), [&](const unsigned int b) {
-      scratch_q[b] = extract(q, b);
-      energies[b]  = bodies[b]->energy(scratch_q[b]);
-    });
     double total = 0.;
-    for (const double energy : energies)
+    for (const double energy :
+         body_parts<double>(bodies.size(), [&](const unsigned int b) {
+           scratch_q[b] = extract(q, b);
+           return bodies[b]->energy(scratch_q[b]);
+         }))
       total += energy;
     if (!std::isfinite(total))
       return infinity;
