@@ -15,7 +15,7 @@ namespace estep
   namespace
   {
     /** The first bytes of a checkpoint: the format and its version. */
-    const std::string magic = "estep checkpoint 3\n";
+    const std::string magic = "estep checkpoint 4\n";
 
     /** FNV-1a, 64 bits: enough to notice a damaged file. */
     std::uint64_t

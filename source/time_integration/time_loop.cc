@@ -76,6 +76,7 @@ namespace estep
     out.put(initial_energy);
     out.put(largest_energy_drift);
     out.put(largest_energy_drift_time);
+    out.put(outputs_passed);
   }
 
 
@@ -89,6 +90,7 @@ namespace estep
     initial_energy            = in.get<double>();
     largest_energy_drift      = in.get<double>();
     largest_energy_drift_time = in.get<double>();
+    outputs_passed            = in.get<std::uint64_t>();
   }
 
 
@@ -141,8 +143,22 @@ namespace estep
         ++k;
       }
 
-      /** Pass every time up to and including @p t, without visiting them
-       * (where a resumed run takes over). */
+      /** How many times have been passed. */
+      std::uint64_t
+      passed() const
+      {
+        return k;
+      }
+
+      /** Take over after the first @p n times (a resumed run). */
+      void
+      resume_after(const std::uint64_t n)
+      {
+        k        = n;
+        finished = n > 0 && at(n - 1) == t_end;
+      }
+
+      /** Pass every time up to and including @p t, without visiting them. */
       void
       skip_to(const double t)
       {
@@ -183,7 +199,7 @@ namespace estep
                            t_end,
                            settings.checkpoint_interval);
       if (resumed)
-        outputs.skip_to(integrator.time());
+        outputs.resume_after(state.outputs_passed);
       checkpoints.skip_to(integrator.time());
       auto last_checkpoint = wall_start;
 
@@ -208,6 +224,7 @@ namespace estep
             for (RunObserver *observer : observers)
               observer->observe(snapshot);
             outputs.advance();
+            state.outputs_passed = outputs.passed();
           }
       };
       const auto write_checkpoint = [&]() {
