@@ -20,6 +20,7 @@
 #include <estep/io/run_summary.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
+#include <estep/systems/mechanical_system.h>
 #include <estep/time_integration/integrator_registry.h>
 #include <estep/time_integration/time_loop.h>
 
@@ -399,6 +400,12 @@ namespace estep
             "The initial velocity of the " + problem.system->name() +
             " is not finite (component " + std::to_string(i) +
             "): check its initial velocity entries or function.");
+      if (const double T0 = kinetic_energy(*problem.system, problem.v0);
+          !std::isfinite(T0))
+        throw std::runtime_error(
+          "The initial kinetic energy of the " + problem.system->name() +
+          " is not finite (" + std::to_string(T0) +
+          "): its initial velocity is too large for double precision.");
     }
 
     /** The integrator chosen in `Time integration`, initialised with the

@@ -3,6 +3,7 @@
 
 #include <estep/base/exception_text.h>
 
+#include <new>
 #include <sstream>
 
 namespace estep
@@ -11,8 +12,11 @@ namespace estep
   one_line_message(const std::exception &exception)
   {
     std::string text = exception.what();
-    if (const auto *deal_ii =
-          dynamic_cast<const dealii::ExceptionBase *>(&exception))
+    if (dynamic_cast<const std::bad_alloc *>(&exception) != nullptr)
+      text = "out of memory (" + text +
+             "): the problem is too large for this machine";
+    else if (const auto *deal_ii =
+               dynamic_cast<const dealii::ExceptionBase *>(&exception))
       {
         std::ostringstream info;
         deal_ii->print_info(info);

@@ -2,6 +2,7 @@
 
 #include <estep/base/point_entry.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -18,12 +19,17 @@ namespace estep
         if (parts.size() != 3)
           throw std::invalid_argument("");
         for (unsigned int d = 0; d < 3; ++d)
-          point[d] = dealii::Utilities::string_to_double(parts[d]);
+          {
+            point[d] = dealii::Utilities::string_to_double(parts[d]);
+            if (!std::isfinite(point[d]))
+              throw std::invalid_argument("");
+          }
       }
     catch (...)
       {
-        throw std::runtime_error(entry + ": <" + text +
-                                 "> is not three comma-separated numbers.");
+        throw std::runtime_error(
+          entry + ": <" + text +
+          "> is not three finite comma-separated numbers.");
       }
     return point;
   }

@@ -721,6 +721,31 @@ namespace estep
 
 
 
+  std::optional<std::pair<unsigned int, unsigned int>>
+  ContactSystem::nested_bodies(const Vector &q) const
+  {
+    // A vertex of each body and surface: without intersecting boundaries,
+    // either all of its boundary lies inside a body or none of it does.
+    constexpr unsigned int    none = std::numeric_limits<unsigned int>::max();
+    std::vector<unsigned int> vertex(bodies.size() + n_surfaces(), none);
+    for (unsigned int i = 0; i < triangles.size(); ++i)
+      if (vertex[triangle_body[i]] == none)
+        vertex[triangle_body[i]] = triangles[i][0];
+    for (unsigned int outer = 0; outer < bodies.size(); ++outer)
+      for (unsigned int inner = 0; inner < vertex.size(); ++inner)
+        if (inner != outer && vertex[inner] != none &&
+            contact::locate_point(contact::point_at(q.data(), vertex[inner]),
+                                  q.data(),
+                                  triangles,
+                                  body_triangles[outer],
+                                  0.)
+                .winding_number > 0.5)
+          return std::make_pair(inner, outer);
+    return std::nullopt;
+  }
+
+
+
   RigidBodyMotion
   ContactSystem::body_motion(const Vector      &q,
                              const Vector      &v,

@@ -14,7 +14,9 @@
 #include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 
 namespace estep
 {
@@ -44,6 +46,17 @@ namespace estep
                                          d.generator + "' with arguments '" +
                                          d.arguments +
                                          "' failed: " + one_line_message(e)));
+        }
+      const double cells = 24. * hex.n_active_cells() *
+                           std::pow(8., static_cast<double>(d.n_refinements));
+      if (!(cells <= max_generated_mesh_cells))
+        {
+          std::ostringstream message;
+          message << "Mesh: the deal.II generator '" << d.generator << "' with "
+                  << d.n_refinements << " refinements would make about "
+                  << cells << " tetrahedra, more than "
+                  << max_generated_mesh_cells << "; take fewer refinements.";
+          AssertThrow(false, dealii::ExcMessage(message.str()));
         }
       hex.refine_global(d.n_refinements);
     }
@@ -137,7 +150,23 @@ namespace estep
   make_mesh(const MeshDescription &d, dealii::Triangulation<3, 3> &tria)
   {
     if (d.type == "box")
-      make_seed_cube_mesh(tria, d.n_subdivisions, d.lower, d.upper);
+      {
+        const double cells = 24. * std::pow(double(d.n_subdivisions), 3);
+        if (!(cells <= max_generated_mesh_cells))
+          {
+            std::ostringstream message;
+            message << "Mesh: a box of " << d.n_subdivisions
+                    << " subdivisions would make " << cells
+                    << " tetrahedra (24 n^3), more than "
+                    << max_generated_mesh_cells
+                    << "; Subdivisions must be at most "
+                    << static_cast<unsigned int>(
+                         std::cbrt(max_generated_mesh_cells / 24.))
+                    << ".";
+            AssertThrow(false, dealii::ExcMessage(message.str()));
+          }
+        make_seed_cube_mesh(tria, d.n_subdivisions, d.lower, d.upper);
+      }
     else if (d.type == "ball")
       {
         AssertThrow(d.radius > 0. && d.mesh_size > 0.,

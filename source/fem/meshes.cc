@@ -128,6 +128,61 @@ namespace estep
     split_hexahedra_into_24_tetrahedra(hex, tria);
   }
 
+  namespace
+  {
+    /**
+     * Throws unless no two cells have the same four vertices and no
+     * triangle is a face of more than two cells (deal.II accepts both; a cell
+     * listed twice hides its faces from the boundary, so contact would not
+     * see them).
+     */
+    void
+    check_cells_are_distinct_and_faces_shared_by_two(
+      const dealii::Triangulation<3, 3> &tria)
+    {
+      using Vertices = std::array<unsigned int, 4>;
+      std::vector<std::pair<Vertices, unsigned int>>                    cells;
+      std::vector<std::pair<std::array<unsigned int, 3>, unsigned int>> faces;
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          Vertices v;
+          for (unsigned int i = 0; i < 4; ++i)
+            v[i] = cell->vertex_index(i);
+          std::sort(v.begin(), v.end());
+          const unsigned int c = cell->active_cell_index();
+          cells.emplace_back(v, c);
+          for (unsigned int skipped = 0; skipped < 4; ++skipped)
+            {
+              std::array<unsigned int, 3> f;
+              for (unsigned int i = 0, j = 0; i < 4; ++i)
+                if (i != skipped)
+                  f[j++] = v[i];
+              faces.emplace_back(f, c);
+            }
+        }
+      std::sort(cells.begin(), cells.end());
+      for (std::size_t i = 1; i < cells.size(); ++i)
+        AssertThrow(cells[i].first != cells[i - 1].first,
+                    dealii::ExcMessage(
+                      "The mesh has two cells with the same vertices (cells " +
+                      std::to_string(cells[i - 1].second) + " and " +
+                      std::to_string(cells[i].second) +
+                      "): a cell is listed twice."));
+      std::sort(faces.begin(), faces.end());
+      for (std::size_t i = 2; i < faces.size(); ++i)
+        AssertThrow(faces[i].first != faces[i - 2].first,
+                    dealii::ExcMessage(
+                      "The mesh is not a manifold: the triangle of vertices " +
+                      std::to_string(faces[i].first[0]) + ", " +
+                      std::to_string(faces[i].first[1]) + ", " +
+                      std::to_string(faces[i].first[2]) +
+                      " is a face of more than two cells (cells " +
+                      std::to_string(faces[i - 2].second) + ", " +
+                      std::to_string(faces[i - 1].second) + " and " +
+                      std::to_string(faces[i].second) + ")."));
+    }
+  } // namespace
+
   void
   check_tetrahedral_mesh(const dealii::Triangulation<3, 3> &tria)
   {
@@ -154,8 +209,8 @@ namespace estep
         if (!(v6 > 6e-12 * longest * longest * longest))
           {
             std::ostringstream message;
-            message << "The mesh has an "
-                    << (v6 < 0. ? "inverted" : "degenerate")
+            message << "The mesh has "
+                    << (v6 < 0. ? "an inverted" : "a degenerate")
                     << " tetrahedron: cell " << cell->active_cell_index()
                     << " has signed volume " << v6 / 6. << " (vertices";
             for (unsigned int i = 0; i < 4; ++i)
@@ -165,5 +220,6 @@ namespace estep
             AssertThrow(false, dealii::ExcMessage(message.str()));
           }
       }
+    check_cells_are_distinct_and_faces_shared_by_two(tria);
   }
 } // namespace estep

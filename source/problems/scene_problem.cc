@@ -571,6 +571,18 @@ namespace estep
                     " overlap at t = 0 (their boundaries intersect); "
                     "move them apart.");
             }
+          if (const auto nested = contact_system->nested_bodies(q0))
+            {
+              const auto [inner, outer] = *nested;
+              throw std::runtime_error(
+                "Scene: " +
+                (inner >= n_bodies ?
+                   "obstacle " +
+                     contact_system->surface(inner - n_bodies).name :
+                   body_section(inner)) +
+                " lies inside " + body_section(outer) +
+                " at t = 0; move them apart.");
+            }
         }
 
       // Decorations: obstacles, gravity, supports.

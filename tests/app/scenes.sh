@@ -24,7 +24,8 @@
 # - the README's own scene runs as written;
 # - a scene's obstacles are written once (fields/obstacles.vtu) and listed in every snapshot;
 # - eight balls (898 tetrahedra each) over a floor set up and start conserving;
-# - bad scenes: one clear message each and exit code 1.
+# - bad scenes (among them a body or an obstacle wholly inside another body, a non-finite
+#   point or initial kinetic energy): one clear message each and exit code 1.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
 work=$(mktemp -d)
@@ -228,6 +229,12 @@ expect_error "Scene/Body 4/Mesh: .*cannot open the gmsh file 'missing.msh'" "${c
 printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n$Elements\n1\n1 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n' > hexahedron.msh
 expect_error "Scene/Body 4/Mesh: The mesh has a cell that is not a tetrahedron" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=hexahedron.msh"
 expect_error "Scene/Body 1/Initial velocity/Function expression: <sqrt\(> cannot be evaluated" "${cradle[@]}" -s "Scene/Body 1/Initial velocity/Type=function" -s "Scene/Body 1/Initial velocity/Function expression=sqrt("
+expect_error "Scene: Body 2 lies inside Body 1 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Number of bodies=2" -s "Scene/Body 2/Mesh/Type=ball" -s "Scene/Body 2/Mesh/Radius=0.01" -s "Scene/Body 2/Placement/Shift=0, 0, 0.6"
+expect_error "Scene: Body 1 lies inside Body 2 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Number of bodies=2" -s "Scene/Body 2/Mesh/Type=ball" -s "Scene/Body 2/Mesh/Radius=0.3" -s "Scene/Body 2/Placement/Shift=0, 0, 0.6"
+printf 'solid inner\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0.6\n   vertex 0.01 0 0.6\n   vertex 0 0.01 0.6\n  endloop\n endfacet\nendsolid inner\n' > inner.stl
+expect_error "Scene: obstacle inner.stl lies inside Body 1 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=inner.stl"
+expect_error "Scene/Body 1/Tracked point: <nan, 0, 0> is not three finite comma-separated numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Tracked point=nan, 0, 0"
+expect_error "The initial kinetic energy of the scene is not finite" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Initial velocity/Translational velocity=0, 0, -1e300"
 printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Scene\n  subsection Body 1\n    subsection Mesh\n      set Subdivisions = 2\n    end\n  end\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
 expect_error "Contact/Mode: a scene of one body without obstacles has nothing to contact" one_body.prm
 [[ ! -e bad ]] || fail "a scene that failed at set-up wrote output"

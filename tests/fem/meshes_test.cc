@@ -112,6 +112,32 @@ namespace
     EXPECT_NE(error_of(d).find("degenerate tetrahedron"), std::string::npos)
       << error_of(d);
 
+    // A cell listed twice: deal.II accepts it, and the two copies hide each
+    // other's faces from the boundary.
+    {
+      std::ofstream out(name);
+      out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n"
+          << "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n$EndNodes\n"
+          << "$Elements\n3\n1 4 2 0 1 1 2 3 4\n2 4 2 0 1 2 3 4 5\n"
+          << "3 4 2 0 1 1 2 3 4\n$EndElements\n";
+    }
+    EXPECT_NE(error_of(d).find(
+                "two cells with the same vertices (cells 0 and 2)"),
+              std::string::npos)
+      << error_of(d);
+
+    // Three distinct cells on one triangle (0, 1, 2): not a manifold.
+    {
+      std::ofstream out(name);
+      out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n"
+          << "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 0 0 -1\n6 0.2 0.2 2\n"
+          << "$EndNodes\n$Elements\n3\n1 4 2 0 1 1 2 3 4\n"
+          << "2 4 2 0 1 1 3 2 5\n3 4 2 0 1 1 2 3 6\n$EndElements\n";
+    }
+    EXPECT_NE(error_of(d).find("more than two cells (cells 0, 1 and 2)"),
+              std::string::npos)
+      << error_of(d);
+
     // Garbage.
     {
       std::ofstream out(name);
@@ -141,6 +167,20 @@ namespace
     d                = estep::MeshDescription();
     d.n_subdivisions = 0;
     EXPECT_NE(error_of(d).find("subdivisions"), std::string::npos)
+      << error_of(d);
+    // Too many tetrahedra for a generator: refused before it runs (160 is
+    // the largest box, 24 * 160^3 = 98,304,000 tetrahedra).
+    d.n_subdivisions = 161;
+    EXPECT_NE(error_of(d).find("Subdivisions must be at most 160"),
+              std::string::npos)
+      << error_of(d);
+    d               = estep::MeshDescription();
+    d.type          = "deal.II 24";
+    d.generator     = "hyper_cube";
+    d.arguments     = "0 : 1 : false";
+    d.n_refinements = 9;
+    EXPECT_NE(error_of(d).find("with 9 refinements would make"),
+              std::string::npos)
       << error_of(d);
   }
 

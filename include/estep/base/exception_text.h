@@ -9,8 +9,8 @@ namespace estep
   /**
    * What an exception says, in one line: for a deal.II exception its
    * additional information without the source location and the violated
-   * condition (the part written for its user, not its developer), for any
-   * other its what().
+   * condition (the part written for its user, not its developer), for
+   * std::bad_alloc that memory ran out, for any other its what().
    */
   std::string
   one_line_message(const std::exception &exception);

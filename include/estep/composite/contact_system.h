@@ -235,6 +235,13 @@ namespace estep
     std::vector<std::pair<unsigned int, unsigned int>>
     intersecting_bodies(const Vector &q) const;
 
+    /** For a configuration whose boundaries do not intersect
+     * (intersecting_bodies() empty): the first body or surface (numbered as
+     * there) that lies wholly inside a body, and that body; a vertex of the
+     * one has winding number above 1/2 in the other's boundary. */
+    std::optional<std::pair<unsigned int, unsigned int>>
+    nested_bodies(const Vector &q) const;
+
     /** A boundary point of one body found deep inside another. */
     struct Penetration
     {

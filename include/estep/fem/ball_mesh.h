@@ -11,10 +11,6 @@ namespace dealii
 
 namespace estep
 {
-  /** The most tetrahedra make_ball_mesh() is asked to make (estimated from
-   * the mesh size before gmsh runs). */
-  constexpr double max_ball_mesh_cells = 1e8;
-
   /**
    * An unstructured tetrahedral mesh of the ball of radius @p radius about @p
    * centre, made with the gmsh library that deal.II links (OpenCASCADE sphere,
@@ -27,7 +23,7 @@ namespace estep
    * @p tria must be empty. Throws dealii::ExcMessage, in a sentence that
    * names the mesh size and suits a prefix naming the entry, for a mesh size
    * or radius that is not positive, a mesh size that would make more than
-   * max_ball_mesh_cells tetrahedra (about 898 (0.3 / mesh_size)^3), or if
+   * max_generated_mesh_cells tetrahedra (about 898 (0.3 / mesh_size)^3), or if
    * gmsh fails (with gmsh's message) or produces no tetrahedra; the result
    * passes check_tetrahedral_mesh(). gmsh is initialised and finalised
    * inside (not thread-safe).

@@ -11,6 +11,10 @@ namespace dealii
 
 namespace estep
 {
+  /** The most tetrahedra a mesh generator (ball, box, deal.II) is asked to
+   * make, estimated before it runs. */
+  constexpr double max_generated_mesh_cells = 1e8;
+
   /**
    * The cube mesh of the spinning-cube example: the box [lower, upper] (the
    * unit cube by default)
@@ -46,8 +50,10 @@ namespace estep
   /**
    * Check that @p tria is a non-empty mesh of tetrahedra only, each with a
    * positive volume (vertex order as deal.II's reference tetrahedron) larger
-   * than 1e-12 times the cube of its longest edge. Throws dealii::ExcMessage
-   * naming the first offending cell (index, vertices) otherwise.
+   * than 1e-12 times the cube of its longest edge, no two cells with the
+   * same vertices and no triangle a face of more than two cells. Throws
+   * dealii::ExcMessage naming the first offending cell (index, vertices) or
+   * cells otherwise.
    */
   void
   check_tetrahedral_mesh(const dealii::Triangulation<3, 3> &tria);
