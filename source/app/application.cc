@@ -518,6 +518,18 @@ namespace estep
         {}
     }
 
+    /** The bytes of the problem's initial positions and velocities (what
+     * checkpoints compare, besides the parameters). */
+    std::string
+    state_bytes(const Problem &problem)
+    {
+      std::string bytes;
+      for (const Vector *x : {&problem.q0, &problem.v0})
+        bytes.append(reinterpret_cast<const char *>(x->data()),
+                     x->size() * sizeof(double));
+      return bytes;
+    }
+
     /** The PRM text of the parameters (what checkpoints compare). */
     std::string
     parameters_text(const dealii::ParameterHandler &prm)
@@ -537,6 +549,7 @@ namespace estep
       TimeIntegrator                                    &integrator,
       const RunParameters                               &parameters,
       const std::string                                 &parameters_as_read,
+      const std::string                                 &initial_state,
       const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
       const std::optional<TimeLoopState>                &resumed_state)
     {
@@ -555,6 +568,7 @@ namespace estep
                             checkpoint_file_name)
                              .string(),
                            parameters_as_read,
+                           initial_state,
                            state,
                            integrator,
                            postprocessors);
@@ -655,6 +669,7 @@ namespace estep
       const std::filesystem::path directory(parameters.output_directory);
       const std::string summary_file = (directory / "summary.json").string();
       const std::string parameters_as_read = parameters_text(prm);
+      const std::string initial_state      = state_bytes(problem);
       std::optional<Checkpoint>    checkpoint;
       std::optional<TimeLoopState> resumed_state;
       if (command.resume)
@@ -664,6 +679,7 @@ namespace estep
             {
               checkpoint.emplace(file);
               checkpoint->check_parameters(parameters_as_read);
+              checkpoint->check_initial_state(initial_state);
               resumed_state = checkpoint->restore(*integrator);
               if (integrator->time() > parameters.end_time)
                 {
@@ -684,6 +700,25 @@ namespace estep
                       << directory.string()
                       << "/: the run starts from the beginning\n";
         }
+      // A resume takes over the outputs before anything else is written, so
+      // that one which cannot (history.csv cut short) leaves the output
+      // directory as it was.
+      std::string start_error;
+      if (checkpoint)
+        try
+          {
+            checkpoint->resume(postprocessors, !writes_output);
+          }
+        catch (const std::runtime_error &error)
+          {
+            start_error = error.what();
+          }
+      if (largest_over_ranks(!start_error.empty()) != 0)
+        {
+          if (!start_error.empty())
+            std::cerr << "estep: " << start_error << '\n';
+          return exit_failed;
+        }
       std::exception_ptr preparation_error;
       if (writes_output)
         try
@@ -703,11 +738,8 @@ namespace estep
             std::rethrow_exception(preparation_error);
           return exit_input_error;
         }
-      std::string start_error;
       try
         {
-          if (checkpoint)
-            checkpoint->resume(postprocessors, !writes_output);
           if (!writes_output)
             postprocessors.erase(
               std::remove_if(postprocessors.begin(),
@@ -737,6 +769,7 @@ namespace estep
       TimeLoopResult result = run_time_loop_with_signals(*integrator,
                                                          parameters,
                                                          parameters_as_read,
+                                                         initial_state,
                                                          postprocessors,
                                                          resumed_state);
       if (result.status == RunStatus::failed && rank_count() > 1)

@@ -117,6 +117,7 @@ namespace estep
   write_checkpoint(
     const std::string                                 &file,
     const std::string                                 &parameters,
+    const std::string                                 &initial_state,
     const TimeLoopState                               &loop,
     const TimeIntegrator                              &integrator,
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
@@ -128,6 +129,7 @@ namespace estep
       fixed += entry + "\n";
     StateWriter payload;
     payload.put(fixed);
+    payload.put(checksum(initial_state));
     {
       StateWriter part;
       loop.save(part);
@@ -192,9 +194,10 @@ namespace estep
     try
       {
         StateReader reader(payload);
-        parameters       = reader.get_string();
-        loop_state       = reader.get_string();
-        integrator_state = reader.get_string();
+        parameters             = reader.get_string();
+        initial_state_checksum = reader.get<std::uint64_t>();
+        loop_state             = reader.get_string();
+        integrator_state       = reader.get_string();
         postprocessor_states.resize(reader.get<std::uint64_t>());
         for (std::string &state : postprocessor_states)
           state = reader.get_string();
@@ -226,6 +229,19 @@ namespace estep
             "); only the end time, the checkpoint entries, the threads and "
             "the output directory may change.");
         }
+  }
+
+
+
+  void
+  Checkpoint::check_initial_state(const std::string &initial_state) const
+  {
+    if (checksum(initial_state) != initial_state_checksum)
+      throw std::runtime_error(
+        "--resume: the checkpoint <" + file +
+        "> was written for another initial state (the same parameters, but "
+        "a mesh or surface file, or a library they name, has changed since); "
+        "the run cannot continue from it.");
   }
 
 

@@ -3,8 +3,9 @@
 # the uninterrupted run, for energy-stepping with and without contact (with field output in vtu
 # and in HDF5, whose files and series equal those of the uninterrupted run), Newmark and the
 # energy-momentum method; the SUNDIALS methods resume from the checkpoint's exact state and
-# agree within their tolerance; SIGTERM leaves a final checkpoint; a damaged checkpoint or
-# changed parameters are refused in one line.
+# agree within their tolerance; SIGTERM leaves a final checkpoint; a damaged checkpoint,
+# changed parameters or a changed mesh file are refused in one line; a resume that fails
+# leaves the output directory's summary and parameters as they were.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
 work=$(mktemp -d)
@@ -197,6 +198,31 @@ printf 'x' | dd of=run/checkpoint.bin bs=1 seek=200 conv=notrunc 2> /dev/null
 rc=$?
 [[ $rc == 1 ]] || fail "damaged checkpoint: exit code $rc"
 grep -q "damaged" err.txt || fail "damaged checkpoint: $(cat err.txt)"
+
+# A mesh file changed since the checkpoint is refused in one line (exit 1), and a resume that
+# cannot take over an output (history.csv cut short: exit 4) leaves the directory's summary
+# and parameters as they were.
+printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 0 1 1 2 3 4\n$EndElements\n' > tet.msh
+tet=("$files/scene_ball_drop.prm" --set "Output directory=tet" --set "Postprocessors/List=history"
+     --set "Scene/Body 1/Mesh/Type=gmsh" --set "Scene/Body 1/Mesh/File name=tet.msh"
+     --set "Output/Checkpoint interval=0.005")
+"$ESTEP" "${tet[@]}" --set "Time integration/End time=0.01" > /dev/null 2>&1 || fail "the tetrahedron run"
+cp tet/summary.json tet/parameters.prm .
+sed -i 's/^4 0 0 1$/4 0 0 1.1/' tet.msh
+"$ESTEP" "${tet[@]}" --set "Time integration/End time=0.02" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 1 ]] || fail "changed mesh file: exit code $rc"
+grep -q "was written for another initial state" err.txt || fail "changed mesh file: $(cat err.txt)"
+[[ $(wc -l < err.txt) == 1 ]] || fail "changed mesh file: not one line: $(cat err.txt)"
+sed -i 's/^4 0 0 1.1$/4 0 0 1/' tet.msh
+truncate -s 300 tet/history.csv
+"$ESTEP" "${tet[@]}" --set "Time integration/End time=0.02" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 4 ]] || fail "history.csv cut short: exit code $rc"
+grep -q "Cannot resume the history file" err.txt || fail "history.csv cut short: $(cat err.txt)"
+for f in summary.json parameters.prm; do
+  cmp -s "$f" "tet/$f" || fail "a failed resume changed $f"
+done
 
 echo "$failures failure(s)"
 [[ $failures == 0 ]]

@@ -4,6 +4,7 @@
 #include <estep/io/postprocessor.h>
 #include <estep/time_integration/time_loop.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,7 +17,9 @@ namespace estep
   /**
    * Write the whole state of a run to @p file: the entries of the parameters
    * it runs with (@p parameters, as printed) that fix its trajectory (all but
-   * those a resume may change), the time loop's state, the integrator's and
+   * those a resume may change), a checksum of the bytes of its initial state
+   * (@p initial_state: what the parameters made of the mesh files and
+   * libraries they name), the time loop's state, the integrator's and
    * every postprocessor's. The bytes go to a temporary file, which is
    * flushed to the disk and then renamed over @p file: a kill at any instant
    * leaves either the previous checkpoint or this one, whole. Throws
@@ -26,6 +29,7 @@ namespace estep
   write_checkpoint(
     const std::string                                 &file,
     const std::string                                 &parameters,
+    const std::string                                 &initial_state,
     const TimeLoopState                               &loop,
     const TimeIntegrator                              &integrator,
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors);
@@ -49,6 +53,11 @@ namespace estep
     void
     check_parameters(const std::string &parameters) const;
 
+    /** Throws std::runtime_error unless @p initial_state has the bytes of the
+     * checkpoint's initial state (a mesh file changed since, for one). */
+    void
+    check_initial_state(const std::string &initial_state) const;
+
     /** Restore the integrator's state; returns the time loop's. */
     TimeLoopState
     restore(TimeIntegrator &integrator) const;
@@ -66,6 +75,7 @@ namespace estep
     std::string file;
     /** The fixed entries, one "Section/Entry = value" per line. */
     std::string              parameters;
+    std::uint64_t            initial_state_checksum;
     std::string              loop_state, integrator_state;
     std::vector<std::string> postprocessor_states;
   };
