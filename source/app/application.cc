@@ -719,7 +719,7 @@ namespace estep
             std::cerr << "estep: " << start_error << '\n';
           return exit_failed;
         }
-      std::exception_ptr preparation_error;
+      std::string preparation_error;
       if (writes_output)
         try
           {
@@ -728,15 +728,17 @@ namespace estep
                                      record,
                                      checkpoint.has_value());
           }
-        catch (...)
+        catch (const std::exception &error)
           {
-            preparation_error = std::current_exception();
+            preparation_error = one_line_message(error);
           }
-      if (largest_over_ranks(preparation_error != nullptr) != 0)
+      if (largest_over_ranks(!preparation_error.empty()) != 0)
         {
-          if (preparation_error)
-            std::rethrow_exception(preparation_error);
-          return exit_input_error;
+          if (!preparation_error.empty())
+            std::cerr << "estep: cannot prepare the output directory <"
+                      << directory.string() << ">: " << preparation_error
+                      << '\n';
+          return exit_failed;
         }
       try
         {

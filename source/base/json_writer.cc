@@ -163,7 +163,10 @@ namespace estep
         }
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0)
-      throw std::runtime_error("Cannot rename <" + temporary + "> to <" + path +
-                               ">.");
+      {
+        std::remove(temporary.c_str());
+        throw std::runtime_error("Cannot rename <" + temporary + "> to <" +
+                                 path + ">.");
+      }
   }
 } // namespace estep

@@ -51,14 +51,14 @@ namespace estep
                   "the mesh size and the radius of a ball must be positive."));
     // 898 tetrahedra at 0.3, and as many more as the volume of one shrinks.
     const double estimated_cells = 898. * std::pow(0.3 / mesh_size, 3);
-    AssertThrow(estimated_cells <= max_generated_mesh_cells,
-                dealii::ExcMessage(
-                  "the mesh size " + short_number(mesh_size) +
-                  " (relative to the radius) would make a ball of about " +
-                  short_number(estimated_cells) + " tetrahedra, more than " +
-                  short_number(max_generated_mesh_cells) + "; it must be at least " +
-                  short_number(0.3 * std::cbrt(898. / max_generated_mesh_cells)) +
-                  "."));
+    AssertThrow(
+      estimated_cells <= max_generated_mesh_cells,
+      dealii::ExcMessage(
+        "the mesh size " + short_number(mesh_size) +
+        " (relative to the radius) would make a ball of about " +
+        short_number(estimated_cells) + " tetrahedra, more than " +
+        short_number(max_generated_mesh_cells) + "; it must be at least " +
+        short_number(0.3 * std::cbrt(898. / max_generated_mesh_cells)) + "."));
     AssertThrow(tria.n_cells() == 0,
                 dealii::ExcMessage("make_ball_mesh: the mesh must be empty."));
 #ifndef DEAL_II_GMSH_WITH_API

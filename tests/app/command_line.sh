@@ -272,6 +272,14 @@ mkdir -p full && ln -sf /dev/full full/history.csv
 expect 4 "Cannot write the history file <full/history.csv>" -- run.prm -s "Output directory=full"
 grep -q '"status": "failed"' full/summary.json || fail "summary.json of a failed write lacks status failed"
 
+# An output directory that cannot be prepared (summary.json a directory, a file where the
+# directory should be): exit code 4, the directory named, no temporary file left behind.
+mkdir -p unprepared/summary.json
+expect 4 "cannot prepare the output directory <unprepared>: Cannot rename <unprepared/summary.json.part>" -- run.prm -s "Output directory=unprepared"
+[[ ! -e unprepared/summary.json.part ]] || fail "a failed summary left summary.json.part behind"
+touch plain_file
+expect 4 "cannot prepare the output directory <plain_file/run>" -- run.prm -s "Output directory=plain_file/run"
+
 # Field output on a device that fills up (a file size limit of 64 KB): exit code 4, the file
 # named, no crash at exit, and no partial snapshot left behind. The HDF5 mesh file fits, its
 # first snapshot does not; the vtu snapshot does not.
