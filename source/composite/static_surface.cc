@@ -10,6 +10,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -54,7 +55,9 @@ namespace estep
   read_stl_surface(const std::string &filename)
   {
     const std::string what = "STL file <" + filename + ">: ";
-    std::ifstream     in(filename);
+    if (std::filesystem::is_directory(filename))
+      throw std::runtime_error(what + "is a directory, not a file.");
+    std::ifstream in(filename);
     if (!in)
       throw std::runtime_error(what + "cannot be opened.");
 
@@ -163,7 +166,9 @@ namespace estep
   read_msh_surface(const std::string &filename)
   {
     const std::string what = "gmsh file <" + filename + ">: ";
-    std::ifstream     in(filename);
+    if (std::filesystem::is_directory(filename))
+      throw std::runtime_error(what + "is a directory, not a file.");
+    std::ifstream in(filename);
     if (!in)
       throw std::runtime_error(what + "cannot be opened.");
     dealii::Triangulation<2, 3> tria;

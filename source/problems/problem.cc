@@ -3,8 +3,11 @@
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
 
+#include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace estep
 {
@@ -91,14 +94,28 @@ namespace estep
     };
     const auto own   = sections_of(chosen);
     const auto given = printed_subsections(prm);
+    // Per subsection the chosen problem does not read: the problems that do,
+    // and whether it differs from the defaults of one of them.
+    std::map<std::string, std::pair<std::vector<std::string>, bool>> others;
     for (const auto &other : problem_registry().plugins())
       for (const auto &[section, defaults] : sections_of(other))
-        if (own.count(section) == 0 && given.count(section) > 0 &&
-            given.at(section) != defaults)
+        if (own.count(section) == 0 && given.count(section) > 0)
+          {
+            auto &[readers, set] = others[section];
+            readers.push_back(other.name);
+            set = set || given.at(section) != defaults;
+          }
+    for (const auto &[section, readers_and_set] : others)
+      if (const auto &[readers, set] = readers_and_set; set)
+        {
+          std::string names = readers[0];
+          for (std::size_t i = 1; i < readers.size(); ++i)
+            names += (i + 1 == readers.size() ? " and " : ", ") + readers[i];
           throw std::runtime_error(section + ": Problem/System = " + name +
-                                   " does not read this subsection (" +
-                                   other.name +
-                                   " does); a setting there would be ignored.");
+                                   " does not read this subsection (" + names +
+                                   (readers.size() == 1 ? " does" : " do") +
+                                   "); a setting there would be ignored.");
+        }
     return chosen.create(prm);
   }
 } // namespace estep

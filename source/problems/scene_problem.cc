@@ -16,6 +16,7 @@
 #include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/mesh_description.h>
+#include <estep/fem/meshes.h>
 #include <estep/fem/tangent_stiffness.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/parsed_vector_field.h>
@@ -360,6 +361,17 @@ namespace estep
                                     tria);
         dealii::GridTools::shift(
           dealii::Tensor<1, 3>({shift[0], shift[1], shift[2]}), tria);
+        if (scale != 1. || angle != 0.)
+          try
+            {
+              check_tetrahedral_mesh(tria);
+            }
+          catch (const std::exception &error)
+            {
+              throw std::runtime_error(
+                section +
+                "/Placement: the placed mesh: " + one_line_message(error));
+            }
       };
       auto body = std::make_shared<ElasticBodyWithHessian>(
         make_p1_cell_data_on_first_rank(make_placed_mesh, material.density),
@@ -414,8 +426,26 @@ namespace estep
       prm.leave_subsection();
       if (!region.empty())
         {
-          const Vector inside = evaluate_vector_field(
-            section + "/Supports/Region", region + "; 0; 0", "x,y,z", "", X);
+          // The region as the first component of a vector field; its
+          // messages show the region as written.
+          Vector inside;
+          try
+            {
+              inside = evaluate_vector_field(section + "/Supports/Region",
+                                             region + "; 0; 0",
+                                             "x,y,z",
+                                             "",
+                                             X);
+            }
+          catch (const std::runtime_error &error)
+            {
+              std::string  message = error.what();
+              const auto   written = "<" + region + "; 0; 0>";
+              const size_t at      = message.find(written);
+              if (at != std::string::npos)
+                message.replace(at, written.size(), "<" + region + ">");
+              throw std::runtime_error(message);
+            }
           std::size_t n_selected = 0;
           for (unsigned int i = 0; 3 * i < X.size(); ++i)
             if (inside[3 * i] != 0.)

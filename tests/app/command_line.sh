@@ -213,6 +213,7 @@ expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "
 expect 1 "Scene: Problem/System = elastic body does not read this subsection \(scene does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Scene/Gravity=0, 0, -9.8"
 expect 1 "Contact: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Contact/Self contact=true"
 expect 1 "Material: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Material/Density=5000"
+expect 1 "Material: Problem/System = scene does not read this subsection \(colliding balls and elastic body do\); a setting there would be ignored\.$" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_ball_drop.prm" -s "Material/Density=5000" -s "Output directory=scene_material"
 # A scene as --print-parameters prints it (one body, at its defaults) is a valid input.
 "$ESTEP" --print-parameters -s "Problem/System=scene" > scene_defaults.prm
 expect 0 "completed at t = 0.01" -- scene_defaults.prm -s "Contact/Mode=none" -s "Time integration/End time=0.01" -s "Output directory=scene_defaults"

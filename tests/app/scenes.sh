@@ -235,6 +235,10 @@ printf 'solid inner\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0.6\n   ve
 expect_error "Scene: obstacle inner.stl lies inside Body 1 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=inner.stl"
 expect_error "Scene/Body 1/Tracked point: <nan, 0, 0> is not three finite comma-separated numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Tracked point=nan, 0, 0"
 expect_error "The initial kinetic energy of the scene is not finite" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Initial velocity/Translational velocity=0, 0, -1e300"
+mkdir -p directory.stl
+expect_error "Scene/Obstacles/Surface files: STL file <directory.stl>: is a directory, not a file\." "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=directory.stl"
+expect_error "Scene/Body 1/Supports/Region: <foo> cannot be evaluated" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Supports/Region=foo"
+expect_error "Scene/Body 1/Placement: the placed mesh: The mesh has a degenerate tetrahedron" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Scale=1e-300"
 printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Scene\n  subsection Body 1\n    subsection Mesh\n      set Subdivisions = 2\n    end\n  end\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
 expect_error "Contact/Mode: a scene of one body without obstacles has nothing to contact" one_body.prm
 [[ ! -e bad ]] || fail "a scene that failed at set-up wrote output"
