@@ -9,6 +9,7 @@
 #include <estep/app/input_file.h>
 #include <estep/app/renamed_entries.h>
 #include <estep/app/run_parameters.h>
+#include <estep/base/checksum.h>
 #include <estep/base/config.h>
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
@@ -518,16 +519,17 @@ namespace estep
         {}
     }
 
-    /** The bytes of the problem's initial positions and velocities (what
-     * checkpoints compare, besides the parameters). */
-    std::string
-    state_bytes(const Problem &problem)
+    /** The checksum of the problem's initial positions and velocities and
+     * of its geometry (what checkpoints compare, besides the parameters). */
+    std::uint64_t
+    initial_state_checksum(const Problem &problem)
     {
-      std::string bytes;
+      std::uint64_t sum = empty_checksum;
       for (const Vector *x : {&problem.q0, &problem.v0})
-        bytes.append(reinterpret_cast<const char *>(x->data()),
-                     x->size() * sizeof(double));
-      return bytes;
+        sum = checksum(x->data(), x->size() * sizeof(double), sum);
+      return checksum(&problem.geometry_checksum,
+                      sizeof(problem.geometry_checksum),
+                      sum);
     }
 
     /** The PRM text of the parameters (what checkpoints compare). */
@@ -549,7 +551,7 @@ namespace estep
       TimeIntegrator                                    &integrator,
       const RunParameters                               &parameters,
       const std::string                                 &parameters_as_read,
-      const std::string                                 &initial_state,
+      const std::uint64_t                                initial_state,
       const std::vector<std::unique_ptr<Postprocessor>> &postprocessors,
       const std::optional<TimeLoopState>                &resumed_state)
     {
@@ -667,9 +669,9 @@ namespace estep
                              parameters.end_time};
 
       const std::filesystem::path directory(parameters.output_directory);
-      const std::string summary_file = (directory / "summary.json").string();
-      const std::string parameters_as_read = parameters_text(prm);
-      const std::string initial_state      = state_bytes(problem);
+      const std::string   summary_file = (directory / "summary.json").string();
+      const std::string   parameters_as_read = parameters_text(prm);
+      const std::uint64_t initial_state      = initial_state_checksum(problem);
       std::optional<Checkpoint>    checkpoint;
       std::optional<TimeLoopState> resumed_state;
       if (command.resume)
@@ -700,9 +702,9 @@ namespace estep
                       << directory.string()
                       << "/: the run starts from the beginning\n";
         }
-      // A resume takes over the outputs before anything else is written, so
-      // that one which cannot (history.csv cut short) leaves the output
-      // directory as it was.
+      // A resume takes over the outputs before the summary and the
+      // parameters are written, so that one which cannot (history.csv cut
+      // short) leaves them as they were.
       std::string start_error;
       if (checkpoint)
         try

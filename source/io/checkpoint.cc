@@ -1,3 +1,4 @@
+#include <estep/base/checksum.h>
 #include <estep/io/checkpoint.h>
 
 #include <fcntl.h>
@@ -17,17 +18,11 @@ namespace estep
     /** The first bytes of a checkpoint: the format and its version. */
     const std::string magic = "estep checkpoint 4\n";
 
-    /** FNV-1a, 64 bits: enough to notice a damaged file. */
+    /** The checksum of @p bytes: enough to notice a damaged file. */
     std::uint64_t
-    checksum(const std::string &bytes)
+    checksum_of(const std::string &bytes)
     {
-      std::uint64_t hash = 14695981039346656037ull;
-      for (const char c : bytes)
-        {
-          hash ^= static_cast<unsigned char>(c);
-          hash *= 1099511628211ull;
-        }
-      return hash;
+      return checksum(bytes.data(), bytes.size());
     }
 
     /** Write @p bytes to @p file and flush them to the disk. */
@@ -117,7 +112,7 @@ namespace estep
   write_checkpoint(
     const std::string                                 &file,
     const std::string                                 &parameters,
-    const std::string                                 &initial_state,
+    const std::uint64_t                                initial_state,
     const TimeLoopState                               &loop,
     const TimeIntegrator                              &integrator,
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors)
@@ -129,7 +124,7 @@ namespace estep
       fixed += entry + "\n";
     StateWriter payload;
     payload.put(fixed);
-    payload.put(checksum(initial_state));
+    payload.put(initial_state);
     {
       StateWriter part;
       loop.save(part);
@@ -149,7 +144,7 @@ namespace estep
       }
     StateWriter header;
     header.put(static_cast<std::uint64_t>(payload.data().size()));
-    header.put(checksum(payload.data()));
+    header.put(checksum_of(payload.data()));
 
     const std::string temporary = file + ".part";
     write_durably(temporary, magic + header.data() + payload.data());
@@ -188,7 +183,7 @@ namespace estep
     const auto        size    = header_reader.get<std::uint64_t>();
     const auto        check   = header_reader.get<std::uint64_t>();
     const std::string payload = bytes.substr(header_size);
-    if (payload.size() != size || checksum(payload) != check)
+    if (payload.size() != size || checksum_of(payload) != check)
       throw std::runtime_error("The checkpoint <" + file +
                                "> is damaged (its checksum does not match).");
     try
@@ -234,9 +229,9 @@ namespace estep
 
 
   void
-  Checkpoint::check_initial_state(const std::string &initial_state) const
+  Checkpoint::check_initial_state(const std::uint64_t initial_state) const
   {
-    if (checksum(initial_state) != initial_state_checksum)
+    if (initial_state != initial_state_checksum)
       throw std::runtime_error(
         "--resume: the checkpoint <" + file +
         "> was written for another initial state (the same parameters, but "

@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/checksum.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
@@ -656,6 +657,18 @@ namespace estep
           vb = v;
         };
       Problem problem;
+      // The whole configuration (with the vertices supports hold and the
+      // obstacles' points) and the boundary triangles.
+      problem.geometry_checksum =
+        checksum(q0.data(), q0.size() * sizeof(double));
+      if (contact_system)
+        {
+          const auto &triangles = contact_system->boundary_triangles();
+          problem.geometry_checksum =
+            checksum(triangles.data(),
+                     triangles.size() * sizeof(triangles[0]),
+                     problem.geometry_checksum);
+        }
       if (!fixed.empty())
         {
           supported  = std::make_shared<SupportedSystem>(system, fixed, q0);

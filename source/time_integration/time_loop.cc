@@ -1,6 +1,7 @@
 #include <estep/base/distributed_blocks.h>
 #include <estep/time_integration/time_loop.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -150,12 +151,24 @@ namespace estep
         return k;
       }
 
-      /** Take over after the first @p n times (a resumed run). */
+      /**
+       * Take over at time @p t after a run that passed the first @p n times
+       * of its grid (a resumed run, whose end time may be later). The last
+       * of them is passed again if it lies after t: the run ended at t, and
+       * its row at t stood in for that time, unless the two differ only by
+       * round-off (an end time 0.3 for the time 3 x 0.1).
+       */
       void
-      resume_after(const std::uint64_t n)
+      resume_after(const std::uint64_t n, const double t)
       {
-        k        = n;
-        finished = n > 0 && at(n - 1) == t_end;
+        k = n;
+        if (n > 0 && interval > 0.)
+          {
+            const double stood_for = t0 + static_cast<double>(n - 1) * interval;
+            if (stood_for - t > 1e-12 * std::max(std::abs(t), interval))
+              k = n - 1;
+          }
+        finished = k > 0 && at(k - 1) == t_end && t_end <= t;
       }
 
       /** Pass every time up to and including @p t, without visiting them. */
@@ -199,7 +212,7 @@ namespace estep
                            t_end,
                            settings.checkpoint_interval);
       if (resumed)
-        outputs.resume_after(state.outputs_passed);
+        outputs.resume_after(state.outputs_passed, integrator.time());
       checkpoints.skip_to(integrator.time());
       auto last_checkpoint = wall_start;
 

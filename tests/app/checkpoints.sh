@@ -173,15 +173,26 @@ same_run cube_reference run "--resume without a checkpoint"
 "$ESTEP" "${cube[@]}" --set "Time integration/End time=2.5" --resume > /dev/null 2>&1 \
   || fail "continuing a completed run"
 tail -1 run/history.csv | grep -q "^2.5," || fail "continuing a completed run: no row at t = 2.5"
-# An end time short of its grid time (3 x 0.1 > 0.3 in floating point): the continued run's
-# rows follow the old end's row, none repeated.
-short=("$files/quick_start.prm" --set "Output directory=short" --set "Postprocessors/List=history")
-"$ESTEP" "${short[@]}" --set "Time integration/End time=0.3" > /dev/null 2>&1 \
-  || fail "the run to t = 0.3"
-"$ESTEP" "${short[@]}" --set "Time integration/End time=0.6" --resume > /dev/null 2>&1 \
-  || fail "continuing the run to t = 0.3"
-[[ $(cut -d, -f1 short/history.csv | tr '\n' ' ') == "time 0 0.1 0.2 0.3 0.4 0.5 0.6 " ]] \
-  || fail "continuing the run to t = 0.3: the times of history.csv are $(cut -d, -f1 short/history.csv | tr '\n' ' ')"
+# A completed run continued to a later end time: its rows follow the old end's, none repeated
+# and none lost (the end time 0.3 short of the grid time 3 x 0.1 in floating point, an end
+# time between grid times, a history of the start and the end only).
+continued_times() {
+  local expected=$1 first_end=$2 second_end=$3
+  shift 3
+  rm -rf short
+  local short=("$files/quick_start.prm" --set "Output directory=short" --set "Postprocessors/List=history" "$@")
+  "$ESTEP" "${short[@]}" --set "Time integration/End time=$first_end" > /dev/null 2>&1 \
+    || fail "the run to t = $first_end"
+  "$ESTEP" "${short[@]}" --set "Time integration/End time=$second_end" --resume > /dev/null 2>&1 \
+    || fail "continuing the run to t = $first_end"
+  local times=$(cut -d, -f1 short/history.csv | tail -n +2 | tr '\n' ' ')
+  [[ $times == "$expected " ]] \
+    || fail "continuing the run to t = $first_end $*: the times of history.csv are $times, expected $expected"
+}
+continued_times "0 0.1 0.2 0.3 0.4 0.5 0.6" 0.3 0.6
+continued_times "0 0.1 0.2 0.25 0.28" 0.25 0.28
+continued_times "0 0.1 0.2 0.25 0.3 0.4" 0.25 0.4
+continued_times "0 0.3 0.6" 0.3 0.6 --set "Output/History interval=0"
 "$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
 rc=$?
 [[ $rc == 1 ]] || fail "an end time before the checkpoint's: exit code $rc"

@@ -209,6 +209,7 @@ balls=("$ESTEP_SOURCE_DIR/parameter_files/ball_collision.prm" -s "Postprocessors
 expect 1 "Colliding balls/Mesh size: gmsh could not mesh a ball with the mesh size 100 \(relative to the radius\): " -- "${balls[@]}" -s "Colliding balls/Mesh size=100"
 expect 1 "Colliding balls/Mesh size: must be positive\.$" -- "${balls[@]}" -s "Colliding balls/Mesh size=0"
 expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "Contact/Mode=impenetrability"
+expect 1 "Contact: the elastic body problem has no contact" -- "${cube[@]}" -s "Contact/Collision tolerance=1e-3"
 # A subsection that only other problems read keeps its defaults.
 expect 1 "Scene: Problem/System = elastic body does not read this subsection \(scene does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Scene/Gravity=0, 0, -9.8"
 expect 1 "Contact: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Contact/Self contact=true"

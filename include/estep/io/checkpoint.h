@@ -17,9 +17,9 @@ namespace estep
   /**
    * Write the whole state of a run to @p file: the entries of the parameters
    * it runs with (@p parameters, as printed) that fix its trajectory (all but
-   * those a resume may change), a checksum of the bytes of its initial state
-   * (@p initial_state: what the parameters made of the mesh files and
-   * libraries they name), the time loop's state, the integrator's and
+   * those a resume may change), @p initial_state (a checksum of what the
+   * parameters made of the files and libraries they name, see
+   * initial_state_checksum()), the time loop's state, the integrator's and
    * every postprocessor's. The bytes go to a temporary file, which is
    * flushed to the disk and then renamed over @p file: a kill at any instant
    * leaves either the previous checkpoint or this one, whole. Throws
@@ -29,7 +29,7 @@ namespace estep
   write_checkpoint(
     const std::string                                 &file,
     const std::string                                 &parameters,
-    const std::string                                 &initial_state,
+    const std::uint64_t                                initial_state,
     const TimeLoopState                               &loop,
     const TimeIntegrator                              &integrator,
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors);
@@ -53,10 +53,10 @@ namespace estep
     void
     check_parameters(const std::string &parameters) const;
 
-    /** Throws std::runtime_error unless @p initial_state has the bytes of the
-     * checkpoint's initial state (a mesh file changed since, for one). */
+    /** Throws std::runtime_error unless @p initial_state is the checkpoint's
+     * (a mesh file changed since, for one). */
     void
-    check_initial_state(const std::string &initial_state) const;
+    check_initial_state(const std::uint64_t initial_state) const;
 
     /** Restore the integrator's state; returns the time loop's. */
     TimeLoopState

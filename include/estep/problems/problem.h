@@ -5,6 +5,7 @@
 #include <estep/base/plugin_registry.h>
 #include <estep/systems/mechanical_system.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -22,6 +23,11 @@ namespace estep
     Vector                            q0, v0;
     /** What the summary should say about the problem (units, counts, ...). */
     JsonObject description;
+    /** A checksum (estep/base/checksum.h) of what the parameters made of the
+     * files they name that q0 and v0 do not show (e.g. vertices held by
+     * supports, obstacle surfaces, connectivity); 0 for none. A checkpoint
+     * keeps it with q0's and v0's: a resume on changed files is refused. */
+    std::uint64_t geometry_checksum = 0;
   };
 
   /**

@@ -74,9 +74,8 @@ namespace estep
     double largest_energy_drift      = 0.;
     double largest_energy_drift_time = 0.;
     /** How many output times have been passed (the next one's index): a
-     * resumed run takes over there, also when it continues a completed run
-     * to a later end time, whose last output, at the old end time, stood for
-     * the first grid time at or after it. */
+     * resumed run takes over there (when it continues a completed run to a
+     * later end time, see TimeGrid::resume_after() in time_loop.cc). */
     std::uint64_t outputs_passed = 0;
 
     void
