@@ -50,6 +50,21 @@ kill_after_checkpoint() {
   wait $pid 2> /dev/null
 }
 
+# kill_during_run SECONDS ARGS...: kill_after_checkpoint in a fresh run/, and if the run ended
+# before the kill (a machine faster than the reference run's), again with a third of the delay,
+# up to three times; the delay of the last attempt is left in $delay_used.
+kill_during_run() {
+  delay_used=$1
+  shift
+  local attempt
+  for attempt in 1 2 3; do
+    rm -rf run
+    kill_after_checkpoint "$delay_used" "$@"
+    grep -q '"status": "running"' run/summary.json && return
+    delay_used=$(awk -v d="$delay_used" 'BEGIN { printf "%.3f", d / 3 }')
+  done
+}
+
 # The cube by energy-stepping with every postprocessor that keeps state, killed at 20 random
 # instants of its run.
 cube=("$files/quick_start.prm" --set "Output directory=run" --set "Time integration/End time=2"
@@ -59,8 +74,7 @@ cube=("$files/quick_start.prm" --set "Output directory=run" --set "Time integrat
 # The instants are drawn between the first checkpoint and the end, as the uninterrupted run
 # measures them, and counted from the first checkpoint of each run (the start-up before it,
 # reading and meshing, takes a good part of so short a run and varies with the machine's
-# load). A run faster than the reference may end before its kill: it is run again with a third
-# of the delay, up to three times.
+# load; kill_during_run retries a kill that came after the end).
 "$ESTEP" "${cube[@]}" > /dev/null &
 pid=$!
 while kill -0 $pid 2> /dev/null && [[ ! -f run/checkpoint.bin ]]; do sleep 0.01; done
@@ -70,16 +84,10 @@ remaining=$(echo "$(date +%s.%N) - $first" | bc)
 mv run cube_reference
 resumed_mid_run=0
 for k in $(seq 1 20); do
-  delay=$(awk -v seed="$k" -v d="$remaining" 'BEGIN { srand(seed); printf "%.3f", rand() * d }')
-  for attempt in 1 2 3; do
-    rm -rf run
-    kill_after_checkpoint "$delay" "${cube[@]}"
-    grep -q '"status": "running"' run/summary.json && break
-    delay=$(awk -v d="$delay" 'BEGIN { printf "%.3f", d / 3 }')
-  done
-  "$ESTEP" "${cube[@]}" --resume > resume.txt 2>&1 || fail "resume $k (killed $delay s after the first checkpoint): $(tail -2 resume.txt)"
+  kill_during_run "$(awk -v seed="$k" -v d="$remaining" 'BEGIN { srand(seed); printf "%.3f", rand() * d }')" "${cube[@]}"
+  "$ESTEP" "${cube[@]}" --resume > resume.txt 2>&1 || fail "resume $k (killed $delay_used s after the first checkpoint): $(tail -2 resume.txt)"
   grep -q "resuming from" resume.txt && resumed_mid_run=$((resumed_mid_run + 1))
-  same_run cube_reference run "cube, killed $delay s after the first checkpoint"
+  same_run cube_reference run "cube, killed $delay_used s after the first checkpoint"
 done
 echo "cube: 20 kills up to $remaining s after the first checkpoint, $resumed_mid_run resumed from a checkpoint"
 ((resumed_mid_run >= 10)) || fail "only $resumed_mid_run of 20 kills left a checkpoint to resume from"
@@ -112,15 +120,7 @@ check_exact() {
   wait $pid || fail "$what: the uninterrupted run"
   local delay=$(awk -v a="$first_checkpoint" -v b="$(date +%s.%N)" 'BEGIN { print (b - a) / 2 }')
   mv run reference
-  # A run slower than the reference (a loaded machine) is killed in time; one faster may end
-  # first: it is run again with a third of the delay, up to three times.
-  local attempt
-  for attempt in 1 2 3; do
-    rm -rf run
-    kill_after_checkpoint "$delay" "$@"
-    grep -q '"status": "running"' run/summary.json && break
-    delay=$(awk -v d="$delay" 'BEGIN { print d / 3 }')
-  done
+  kill_during_run "$delay" "$@"
   grep -q '"status": "running"' run/summary.json || fail "$what: the kill came too late to test anything"
   "$ESTEP" "$@" --resume > /dev/null 2>&1 || fail "$what: resume"
   same_run reference run "$what"
