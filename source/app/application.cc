@@ -421,7 +421,7 @@ namespace estep
       prm.leave_subsection();
       integrator->initialize(parameters.start_time, problem.q0, problem.v0);
       for (const std::string &warning : integrator->warnings())
-        std::cerr << "estep: warning: " << warning << '\n';
+        std::cerr << ("estep: warning: " + warning + "\n");
       return integrator;
     }
 
@@ -508,7 +508,8 @@ namespace estep
                           const RunRecord   &record,
                           const std::string &message)
     {
-      std::cerr << "estep: " << message << '\n';
+      // One write, which the launcher's banner of MPI_Abort cannot split.
+      std::cerr << ("estep: " + message + "\n");
       try
         {
           write_file_atomically(
@@ -718,7 +719,7 @@ namespace estep
       if (largest_over_ranks(!start_error.empty()) != 0)
         {
           if (!start_error.empty())
-            std::cerr << "estep: " << start_error << '\n';
+            std::cerr << ("estep: " + start_error + "\n");
           return exit_failed;
         }
       std::string preparation_error;
@@ -737,9 +738,9 @@ namespace estep
       if (largest_over_ranks(!preparation_error.empty()) != 0)
         {
           if (!preparation_error.empty())
-            std::cerr << "estep: cannot prepare the output directory <"
-                      << directory.string() << ">: " << preparation_error
-                      << '\n';
+            std::cerr << ("estep: cannot prepare the output directory <" +
+                          directory.string() + ">: " + preparation_error +
+                          "\n");
           return exit_failed;
         }
       try
@@ -798,7 +799,7 @@ namespace estep
           if (result.status != RunStatus::failed)
             throw;
           // The disk that failed the run may not take the summary either.
-          std::cerr << "estep: " << error.what() << '\n';
+          std::cerr << ("estep: " + std::string(error.what()) + "\n");
         }
 
       std::cout << "estep: " << integrator->name() << " on the "
@@ -816,11 +817,11 @@ namespace estep
         if (std::find(warnings_at_start.begin(),
                       warnings_at_start.end(),
                       warning) == warnings_at_start.end())
-          std::cerr << "estep: warning: " << warning << '\n';
+          std::cerr << ("estep: warning: " + warning + "\n");
       for (const std::string &warning : result.warnings)
-        std::cerr << "estep: warning: " << warning << '\n';
+        std::cerr << ("estep: warning: " + warning + "\n");
       if (!result.message.empty())
-        std::cerr << "estep: " << result.message << '\n';
+        std::cerr << ("estep: " + result.message + "\n");
       return exit_code(result);
     }
   } // namespace
@@ -946,11 +947,11 @@ namespace estep
       }
     catch (const dealii::ExceptionBase &exception)
       {
-        std::cerr << "estep: error: " << one_line_message(exception) << '\n';
+        std::cerr << ("estep: error: " + one_line_message(exception) + "\n");
       }
     catch (const std::exception &exception)
       {
-        std::cerr << "estep: error: " << exception.what() << '\n';
+        std::cerr << ("estep: error: " + std::string(exception.what()) + "\n");
       }
     finish_mpi();
     return exit_input_error;

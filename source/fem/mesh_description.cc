@@ -54,8 +54,9 @@ namespace estep
           std::ostringstream message;
           message << "Mesh: the deal.II generator '" << d.generator << "' with "
                   << d.n_refinements << " refinements would make about "
-                  << cells << " tetrahedra, more than "
-                  << max_generated_mesh_cells << "; take fewer refinements.";
+                  << cells << " tetrahedra (24 per hexahedron), more than "
+                  << max_generated_mesh_cells
+                  << "; take fewer refinements or a coarser mesh.";
           AssertThrow(false, dealii::ExcMessage(message.str()));
         }
       hex.refine_global(d.n_refinements);

@@ -153,10 +153,10 @@ namespace estep
 
       /**
        * Take over at time @p t after a run that passed the first @p n times
-       * of its grid (a resumed run, whose end time may be later). The last
-       * of them is passed again if it lies after t: the run ended at t, and
-       * its row at t stood in for that time, unless the two differ only by
-       * round-off (an end time 0.3 for the time 3 x 0.1).
+       * of its grid (a resumed run, whose end time may be later). If the
+       * last of them lies after t, the run ended at t with a row there that
+       * stood in for it: that time is visited again, unless the two differ
+       * only by round-off (an end time 0.3 for the time 3 x 0.1).
        */
       void
       resume_after(const std::uint64_t n, const double t)

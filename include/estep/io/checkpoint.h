@@ -17,9 +17,9 @@ namespace estep
   /**
    * Write the whole state of a run to @p file: the entries of the parameters
    * it runs with (@p parameters, as printed) that fix its trajectory (all but
-   * those a resume may change), @p initial_state (a checksum of what the
-   * parameters made of the files and libraries they name, see
-   * initial_state_checksum()), the time loop's state, the integrator's and
+   * those a resume may change), @p initial_state (a checksum of the
+   * problem's initial state and geometry: what the parameters made of the
+   * files and libraries they name), the time loop's state, the integrator's and
    * every postprocessor's. The bytes go to a temporary file, which is
    * flushed to the disk and then renamed over @p file: a kill at any instant
    * leaves either the previous checkpoint or this one, whole. Throws
