@@ -18,7 +18,8 @@ namespace estep
                         const std::string &expression,
                         const std::string &variables,
                         const std::string &constants,
-                        const Vector      &points)
+                        const Vector      &points,
+                        const unsigned int n_components)
   {
     std::map<std::string, double> values;
     for (const std::string &item :
@@ -43,10 +44,11 @@ namespace estep
     // and say it in one line naming the entry.
     std::ostringstream    diagnosis;
     std::streambuf *const cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
-    Vector                field(points.size());
+    const unsigned int    n           = n_components;
+    Vector                field(points.size() / 3 * n);
     try
       {
-        dealii::FunctionParser<3> function(3);
+        dealii::FunctionParser<3> function(n);
         function.initialize(variables,
                             dealii::Utilities::split_string_list(expression,
                                                                  ';'),
@@ -56,8 +58,8 @@ namespace estep
             const dealii::Point<3> X(points[3 * i],
                                      points[3 * i + 1],
                                      points[3 * i + 2]);
-            for (unsigned int c = 0; c < 3; ++c)
-              field[3 * i + c] = function.value(X, c);
+            for (unsigned int c = 0; c < n; ++c)
+              field[n * i + c] = function.value(X, c);
           }
         std::cerr.rdbuf(cerr_buffer);
       }
@@ -83,12 +85,12 @@ namespace estep
       if (!std::isfinite(field[i]))
         {
           std::ostringstream point;
-          point << points[3 * (i / 3)] << ", " << points[3 * (i / 3) + 1]
-                << ", " << points[3 * (i / 3) + 2];
+          point << points[3 * (i / n)] << ", " << points[3 * (i / n) + 1]
+                << ", " << points[3 * (i / n) + 2];
           throw std::runtime_error(
             entry + ": <" + expression + "> is " + std::to_string(field[i]) +
             " at the point (" + point.str() + ") (component " +
-            std::to_string(i % 3) + ").");
+            std::to_string(i % n) + ").");
         }
     return field;
   }

@@ -427,29 +427,11 @@ namespace estep
       prm.leave_subsection();
       if (!region.empty())
         {
-          // The region as the first component of a vector field; its
-          // messages show the region as written.
-          Vector inside;
-          try
-            {
-              inside = evaluate_vector_field(section + "/Supports/Region",
-                                             region + "; 0; 0",
-                                             "x,y,z",
-                                             "",
-                                             X);
-            }
-          catch (const std::runtime_error &error)
-            {
-              std::string  message = error.what();
-              const auto   written = "<" + region + "; 0; 0>";
-              const size_t at      = message.find(written);
-              if (at != std::string::npos)
-                message.replace(at, written.size(), "<" + region + ">");
-              throw std::runtime_error(message);
-            }
+          const Vector inside = evaluate_vector_field(
+            section + "/Supports/Region", region, "x,y,z", "", X, 1);
           std::size_t n_selected = 0;
-          for (unsigned int i = 0; 3 * i < X.size(); ++i)
-            if (inside[3 * i] != 0.)
+          for (unsigned int i = 0; i < inside.size(); ++i)
+            if (inside[i] != 0.)
               {
                 fixed.insert(i);
                 ++n_selected;
