@@ -425,6 +425,25 @@ namespace estep
       return integrator;
     }
 
+    /** The settings of the input that the chosen method and the listed
+     * postprocessors do not read (ignored_integrator_settings(),
+     * ignored_postprocessor_settings()). */
+    std::vector<std::string>
+    ignored_settings(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time integration");
+      std::vector<std::string> warnings = ignored_integrator_settings(prm);
+      prm.leave_subsection();
+      prm.enter_subsection("Postprocessors");
+      const std::vector<std::string> postprocessing =
+        ignored_postprocessor_settings(prm);
+      prm.leave_subsection();
+      warnings.insert(warnings.end(),
+                      postprocessing.begin(),
+                      postprocessing.end());
+      return warnings;
+    }
+
     /** The postprocessors of `Postprocessors/List`. */
     std::vector<std::unique_ptr<Postprocessor>>
     create_run_postprocessors(dealii::ParameterHandler &prm,
@@ -659,6 +678,10 @@ namespace estep
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
+      const std::vector<std::string> ignored           = ignored_settings(prm);
+      if (writes_output)
+        for (const std::string &warning : ignored)
+          std::cerr << ("estep: warning: " + warning + "\n");
       // The other ranks hold the same state: they run only the
       // postprocessors that write a part of their own.
       auto postprocessors =
@@ -667,7 +690,8 @@ namespace estep
                              *integrator,
                              postprocessors,
                              parameters.start_time,
-                             parameters.end_time};
+                             parameters.end_time,
+                             ignored};
 
       const std::filesystem::path directory(parameters.output_directory);
       const std::string   summary_file = (directory / "summary.json").string();

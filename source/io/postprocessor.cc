@@ -94,6 +94,26 @@ namespace estep
 
 
 
+  std::vector<std::string>
+  ignored_postprocessor_settings(dealii::ParameterHandler &prm)
+  {
+    const std::string        list = prm.get("List");
+    std::vector<std::string> warnings;
+    for (const UnreadSubsection &unread :
+         changed_unread_subsections(prm,
+                                    "Postprocessors",
+                                    postprocessor_registry().declarations(),
+                                    dealii::Utilities::split_string_list(list,
+                                                                         ',')))
+      warnings.push_back("Postprocessors/" + unread.name +
+                         ": set, but Postprocessors/List = " + list +
+                         " does not name " + unread.readers[0] +
+                         ", which reads it; its settings are ignored.");
+    return warnings;
+  }
+
+
+
   std::vector<std::unique_ptr<Postprocessor>>
   create_postprocessors(dealii::ParameterHandler   &prm,
                         const PostprocessorContext &context)

@@ -72,6 +72,9 @@ namespace estep
     warnings.insert(warnings.end(),
                     result.warnings.begin(),
                     result.warnings.end());
+    warnings.insert(warnings.end(),
+                    run.ignored_settings.begin(),
+                    run.ignored_settings.end());
     summary.add("warnings", warnings);
     summary.add("problem", run.problem.description)
       .add("degrees of freedom", system.n_dofs())

@@ -43,8 +43,13 @@ namespace estep
     choice.density = prm.get_double("Density");
     if (!(choice.density > 0.))
       throw std::runtime_error(section + "/Density: must be positive.");
-    const auto &plugin =
-      material_registry().get(prm.get("Model"), section + "/Model");
+    const std::string model = prm.get("Model");
+    const auto &plugin = material_registry().get(model, section + "/Model");
+    for (const UnreadSubsection &unread : changed_unread_subsections(
+           prm, section, material_registry().declarations(), {model}))
+      throw std::runtime_error(
+        unread_subsection_text(section, unread, section + "/Model = " + model) +
+        "; a setting there would be ignored.");
     try
       {
         choice.material = plugin.create(prm);

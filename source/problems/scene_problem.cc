@@ -6,6 +6,7 @@
 
 #include <estep/base/checksum.h>
 #include <estep/base/exception_text.h>
+#include <estep/base/parameter_subsections.h>
 #include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>

@@ -28,6 +28,26 @@ namespace estep
 
 
 
+  std::vector<std::string>
+  ignored_integrator_settings(dealii::ParameterHandler &prm)
+  {
+    const std::string        method = prm.get("Method");
+    std::vector<std::string> warnings;
+    for (const UnreadSubsection &unread :
+         changed_unread_subsections(prm,
+                                    "Time integration",
+                                    integrator_registry().declarations(),
+                                    {method}))
+      warnings.push_back(
+        unread_subsection_text("Time integration",
+                               unread,
+                               "Time integration/Method = " + method) +
+        "; its settings are ignored.");
+    return warnings;
+  }
+
+
+
   std::unique_ptr<TimeIntegrator>
   create_integrator(dealii::ParameterHandler &prm,
                     const MechanicalSystem   &system)

@@ -215,6 +215,17 @@ expect 1 "Scene: Problem/System = elastic body does not read this subsection \(s
 expect 1 "Contact: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Contact/Self contact=true"
 expect 1 "Material: Problem/System = argon cluster does not read this subsection" -- run.prm -s "Material/Density=5000"
 expect 1 "Material: Problem/System = scene does not read this subsection \(colliding balls and elastic body do\); a setting there would be ignored\.$" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_ball_drop.prm" -s "Material/Density=5000" -s "Output directory=scene_material"
+# So does the subsection of a material model other than the chosen one, at any depth.
+expect 1 "Material/Neo-Hookean quadratic volume: Material/Model = neo-Hookean does not read this subsection \(neo-Hookean quadratic volume does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Material/Neo-Hookean quadratic volume/Lambda=0.02"
+expect 1 "Scene/Body 2/Material/Neo-Hookean quadratic volume: Scene/Body 2/Material/Model = neo-Hookean does not read this subsection" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_colliding_balls.prm" -s "Scene/Body 2/Material/Neo-Hookean quadratic volume/Mu=0.02" -s "Output directory=scene_model"
+# The subsections of other time integrators (one shared by several) and of postprocessors
+# missing from the List: a warning each, at the start and in summary.json, and the run goes on.
+expect 0 "warning: Time integration/Explicit Newmark: Time integration/Method = energy stepping does not read this subsection \(explicit newmark does\); its settings are ignored\.$" -- run.prm -s "Time integration/Explicit Newmark/Time step=0.01" -s "Output directory=ignored"
+grep -q '"warnings": \["Time integration/Explicit Newmark: Time integration/Method = energy stepping does not read' ignored/summary.json || fail "summary.json lacks the ignored integrator settings"
+expect 0 "warning: Time integration/Implicit integrators: Time integration/Method = energy stepping does not read this subsection \(arkode irk, arkode midpoint, energy momentum and ida bdf do\)" -- run.prm -s "Time integration/Implicit integrators/Relative tolerance=1e-3" -s "Output directory=ignored"
+expect 0 "warning: Postprocessors/Field output: set, but Postprocessors/List = history does not name field output, which reads it; its settings are ignored\.$" -- run.prm -s "Postprocessors/List=history" -s "Postprocessors/Field output/Interval=1" -s "Output directory=ignored"
+expect 0 "completed" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Explicit Newmark/Time step=0.01" -s "Output directory=read"
+if grep -q "warning" err.txt; then fail "a run that reads every subsection it sets warns: $(cat err.txt)"; fi
 # A scene as --print-parameters prints it (one body, at its defaults) is a valid input.
 "$ESTEP" --print-parameters -s "Problem/System=scene" > scene_defaults.prm
 expect 0 "completed at t = 0.01" -- scene_defaults.prm -s "Contact/Mode=none" -s "Time integration/End time=0.01" -s "Output directory=scene_defaults"

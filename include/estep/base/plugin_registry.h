@@ -1,6 +1,8 @@
 #ifndef estep_base_plugin_registry_h
 #define estep_base_plugin_registry_h
 
+#include <estep/base/parameter_subsections.h>
+
 #include <algorithm>
 #include <functional>
 #include <stdexcept>
@@ -155,6 +157,17 @@ namespace estep
     plugins() const
     {
       return entries;
+    }
+
+    /** Each plugin's name and parameter declaration (for
+     * changed_unread_subsections()). */
+    std::vector<PluginDeclaration>
+    declarations() const
+    {
+      std::vector<PluginDeclaration> result;
+      for (const Plugin &plugin : entries)
+        result.push_back({plugin.name, plugin.declare_parameters});
+      return result;
     }
 
   private:

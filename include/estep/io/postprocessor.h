@@ -120,6 +120,12 @@ namespace estep
   start_order(
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors);
 
+  /** Warnings for the subsections of the current one (`Postprocessors`)
+   * that only postprocessors missing from `List` read and that the input
+   * sets: their settings are ignored. */
+  std::vector<std::string>
+  ignored_postprocessor_settings(dealii::ParameterHandler &prm);
+
   /** The postprocessors named in `List`, in its order. */
   std::vector<std::unique_ptr<Postprocessor>>
   create_postprocessors(dealii::ParameterHandler   &prm,

@@ -18,6 +18,8 @@ namespace estep
     const TimeIntegrator                              &integrator;
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors;
     double                                             start_time, end_time;
+    /** Settings of the input that the run ignores (each a sentence). */
+    const std::vector<std::string> &ignored_settings;
   };
 
   /**
@@ -32,7 +34,8 @@ namespace estep
 
   /**
    * The summary of a run that ended as @p result says: status_summary(), the
-   * warnings (the integrator's at the start, the time loop's at the end),
+   * warnings (the integrator's at the start, the time loop's at the end, the
+   * ignored settings),
    * the problem's description, the counts of work and steps, the energies
    * and momenta at the start and the end with their drifts (and the largest
    * drift of the conserved energy over the output times), the integrator's

@@ -52,17 +52,6 @@ namespace estep
   declare_problem_parameters(dealii::ParameterHandler &prm);
 
   /**
-   * The lines of each subsection of @p prm as deal.II prints them (ShortPRM:
-   * the values, without documentation), by name: the top-level subsections,
-   * or with @p section those inside the top-level subsection @p section. Two
-   * handlers of the same declarations print a subsection alike exactly when
-   * its entries have the same values.
-   */
-  std::map<std::string, std::vector<std::string>>
-  printed_subsections(const dealii::ParameterHandler &prm,
-                      const std::string              &section = "");
-
-  /**
    * Declare the top-level subsection `Material` (declare_material_parameters())
    * that the problems with one material read: every problem's parameters
    * have it, and a problem that reads it declares it as its own too, so

@@ -5,6 +5,8 @@
 #include <estep/time_integration/time_integrator.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace estep
 {
@@ -30,6 +32,12 @@ namespace estep
    */
   void
   declare_integrator_parameters(dealii::ParameterHandler &prm);
+
+  /** Warnings for the subsections of the current one (`Time integration`)
+   * that only integrators other than the one chosen by `Method` read and
+   * that the input sets: their settings are ignored. */
+  std::vector<std::string>
+  ignored_integrator_settings(dealii::ParameterHandler &prm);
 
   /** The integrator chosen by `Method`, from the current subsection. */
   std::unique_ptr<TimeIntegrator>

@@ -1,0 +1,66 @@
+#ifndef estep_base_parameter_subsections_h
+#define estep_base_parameter_subsections_h
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace estep
+{
+  /**
+   * The entries of each subsection of @p prm directly inside the subsection
+   * @p path ("Scene/Body 1", '/'-separated; empty: the top level), by name,
+   * each as one line "set Name = value" (nested subsections as their
+   * "subsection ..." and "end" lines and their entries). Two handlers of the
+   * same declarations give a subsection the same lines exactly when its
+   * entries have the same values.
+   */
+  std::map<std::string, std::vector<std::string>>
+  printed_subsections(const dealii::ParameterHandler &prm,
+                      const std::string              &path = "");
+
+  /** A plugin's name and the function that declares its parameters,
+   * relative to the subsection of its extension point (may be nullptr). */
+  struct PluginDeclaration
+  {
+    std::string name;
+    void (*declare_parameters)(dealii::ParameterHandler &);
+  };
+
+  /** A subsection that the chosen plugins do not read, and the plugins that
+   * do. */
+  struct UnreadSubsection
+  {
+    std::string              name;
+    std::vector<std::string> readers;
+  };
+
+  /**
+   * The subsections inside @p path of @p prm that none of the plugins named
+   * in @p chosen declares, that another of @p plugins declares, and whose
+   * values differ from that plugin's defaults: settings that the run
+   * ignores. (An entry set to its default value cannot be told apart.)
+   */
+  std::vector<UnreadSubsection>
+  changed_unread_subsections(const dealii::ParameterHandler       &prm,
+                             const std::string                    &path,
+                             const std::vector<PluginDeclaration> &plugins,
+                             const std::vector<std::string>       &chosen);
+
+  /**
+   * "path/name: choice does not read this subsection (reader does)" for the
+   * subsection @p unread inside @p path, with @p choice the entry and value
+   * that chose the plugins ("Time integration/Method = explicit newmark").
+   */
+  std::string
+  unread_subsection_text(const std::string      &path,
+                         const UnreadSubsection &unread,
+                         const std::string      &choice);
+} // namespace estep
+
+#endif

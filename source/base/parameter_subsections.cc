@@ -1,0 +1,132 @@
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <estep/base/parameter_subsections.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace estep
+{
+  namespace
+  {
+    std::string
+    trimmed(const std::string &text)
+    {
+      const std::size_t begin = text.find_first_not_of(' ');
+      if (begin == std::string::npos)
+        return "";
+      return text.substr(begin, text.find_last_not_of(' ') - begin + 1);
+    }
+
+    /** A printed line without its indentation, and an entry's without the
+     * padding that aligns the '=' of a subsection. */
+    std::string
+    normalized(const std::string &line)
+    {
+      const std::string text   = trimmed(line);
+      const std::size_t equals = text.find('=');
+      if (text.rfind("set ", 0) != 0 || equals == std::string::npos)
+        return text;
+      return trimmed(text.substr(0, equals)) + " = " +
+             trimmed(text.substr(equals + 1));
+    }
+  } // namespace
+
+
+
+  std::map<std::string, std::vector<std::string>>
+  printed_subsections(const dealii::ParameterHandler &prm,
+                      const std::string              &path)
+  {
+    const std::vector<std::string> target =
+      path.empty() ? std::vector<std::string>() :
+                     dealii::Utilities::split_string_list(path, '/');
+    std::ostringstream text;
+    prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+    std::istringstream                              in(text.str());
+    std::map<std::string, std::vector<std::string>> sections;
+    // The subsections the line being read is in.
+    std::vector<std::string> stack;
+    const auto               inside_target = [&] {
+      return stack.size() > target.size() &&
+             std::equal(target.begin(), target.end(), stack.begin());
+    };
+    for (std::string line; std::getline(in, line);)
+      {
+        const std::string entry = normalized(line);
+        if (entry.rfind("subsection ", 0) == 0)
+          {
+            if (inside_target())
+              sections[stack[target.size()]].push_back(entry);
+            stack.push_back(trimmed(entry.substr(11)));
+          }
+        else if (entry == "end")
+          {
+            if (!stack.empty())
+              stack.pop_back();
+            if (inside_target())
+              sections[stack[target.size()]].push_back(entry);
+          }
+        else if (inside_target() && !entry.empty() && entry[0] != '#')
+          sections[stack[target.size()]].push_back(entry);
+      }
+    return sections;
+  }
+
+
+
+  std::vector<UnreadSubsection>
+  changed_unread_subsections(const dealii::ParameterHandler       &prm,
+                             const std::string                    &path,
+                             const std::vector<PluginDeclaration> &plugins,
+                             const std::vector<std::string>       &chosen)
+  {
+    const auto sections_of = [](const PluginDeclaration &plugin) {
+      dealii::ParameterHandler declared;
+      if (plugin.declare_parameters != nullptr)
+        plugin.declare_parameters(declared);
+      return printed_subsections(declared);
+    };
+    std::map<std::string, std::vector<std::string>> read;
+    for (const PluginDeclaration &plugin : plugins)
+      if (std::find(chosen.begin(), chosen.end(), plugin.name) != chosen.end())
+        read.merge(sections_of(plugin));
+    const auto given = printed_subsections(prm, path);
+    // Per subsection no chosen plugin reads: the plugins that do, and
+    // whether it differs from the defaults of one of them.
+    std::map<std::string, std::pair<std::vector<std::string>, bool>> others;
+    for (const PluginDeclaration &plugin : plugins)
+      for (const auto &[section, defaults] : sections_of(plugin))
+        if (read.count(section) == 0 && given.count(section) > 0)
+          {
+            auto &[readers, changed] = others[section];
+            readers.push_back(plugin.name);
+            changed = changed || given.at(section) != defaults;
+          }
+    std::vector<UnreadSubsection> unread;
+    for (const auto &[section, readers_and_changed] : others)
+      if (readers_and_changed.second)
+        unread.push_back({section, readers_and_changed.first});
+    return unread;
+  }
+
+
+
+  std::string
+  unread_subsection_text(const std::string      &path,
+                         const UnreadSubsection &unread,
+                         const std::string      &choice)
+  {
+    std::string                     readers;
+    const std::vector<std::string> &names = unread.readers;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      readers += (i == 0                ? "" :
+                  i + 1 == names.size() ? " and " :
+                                          ", ") +
+                 names[i];
+    return (path.empty() ? "" : path + "/") + unread.name + ": " + choice +
+           " does not read this subsection (" + readers +
+           (names.size() == 1 ? " does" : " do") + ")";
+  }
+} // namespace estep
