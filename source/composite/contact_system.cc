@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -724,17 +725,38 @@ namespace estep
   std::optional<std::pair<unsigned int, unsigned int>>
   ContactSystem::nested_bodies(const Vector &q) const
   {
-    // A vertex of each body and surface: without intersecting boundaries,
-    // either all of its boundary lies inside a body or none of it does.
-    constexpr unsigned int    none = std::numeric_limits<unsigned int>::max();
-    std::vector<unsigned int> vertex(bodies.size() + n_surfaces(), none);
+    // A vertex of each connected piece of each body's and surface's
+    // boundary: without intersecting boundaries, either all of a piece lies
+    // inside a body or none of it does. The pieces: the classes of the
+    // vertices joined by triangle edges.
+    unsigned int n_vertices = 0;
+    for (const auto &triangle : triangles)
+      n_vertices =
+        std::max(n_vertices,
+                 1 + *std::max_element(triangle.begin(), triangle.end()));
+    std::vector<unsigned int> parent(n_vertices);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](unsigned int p) {
+      while (parent[p] != p)
+        p = parent[p] = parent[parent[p]];
+      return p;
+    };
+    for (const auto &triangle : triangles)
+      for (const unsigned int corner : {triangle[1], triangle[2]})
+        parent[root(corner)] = root(triangle[0]);
+    // Per piece, its owner and a vertex.
+    std::vector<std::pair<unsigned int, unsigned int>> pieces;
+    std::vector<bool>                                  seen(n_vertices, false);
     for (unsigned int i = 0; i < triangles.size(); ++i)
-      if (vertex[triangle_body[i]] == none)
-        vertex[triangle_body[i]] = triangles[i][0];
+      if (const unsigned int r = root(triangles[i][0]); !seen[r])
+        {
+          seen[r] = true;
+          pieces.emplace_back(triangle_body[i], triangles[i][0]);
+        }
     for (unsigned int outer = 0; outer < bodies.size(); ++outer)
-      for (unsigned int inner = 0; inner < vertex.size(); ++inner)
-        if (inner != outer && vertex[inner] != none &&
-            contact::locate_point(contact::point_at(q.data(), vertex[inner]),
+      for (const auto &[inner, vertex] : pieces)
+        if (inner != outer &&
+            contact::locate_point(contact::point_at(q.data(), vertex),
                                   q.data(),
                                   triangles,
                                   body_triangles[outer],

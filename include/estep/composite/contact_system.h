@@ -237,8 +237,9 @@ namespace estep
 
     /** For a configuration whose boundaries do not intersect
      * (intersecting_bodies() empty): the first body or surface (numbered as
-     * there) that lies wholly inside a body, and that body; a vertex of the
-     * one has winding number above 1/2 in the other's boundary. */
+     * there) of which a connected piece of the boundary lies wholly inside
+     * a body, and that body; a vertex of each piece is tested (winding
+     * number above 1/2 in the other's boundary). */
     std::optional<std::pair<unsigned int, unsigned int>>
     nested_bodies(const Vector &q) const;
 
