@@ -313,6 +313,8 @@ namespace estep
     create_arkode(dealii::ParameterHandler &prm, const MechanicalSystem &system)
     {
       const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      if (method == ArkodeRungeKutta::Method::dirk)
+        parameters.check_adaptive();
       return std::make_unique<ArkodeRungeKutta>(system,
                                                 parameters,
                                                 method,

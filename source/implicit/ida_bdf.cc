@@ -288,6 +288,7 @@ namespace estep
                    const MechanicalSystem   &system)
     {
       const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      parameters.check_adaptive();
       return std::make_unique<IdaBdf>(system, parameters, parameters.time_step);
     }
   } // namespace

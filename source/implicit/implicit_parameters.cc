@@ -3,6 +3,7 @@
 #include <estep/implicit/implicit_parameters.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -31,6 +32,21 @@ namespace estep
     require(minimum_step >= 0., "the minimum step must not be negative.");
     require(linear_tolerance > 0. && linear_tolerance < 1.,
             "the linear tolerance must be in (0, 1).");
+  }
+
+  void
+  ImplicitParameters::check_adaptive() const
+  {
+    check();
+    if (minimum_step > time_step)
+      {
+        std::ostringstream message;
+        message << "Time integration/Implicit integrators/Minimum step: "
+                << minimum_step << " exceeds the initial step of the adaptive "
+                << "methods (Time step = " << time_step
+                << "); it must be at most that.";
+        throw std::invalid_argument(message.str());
+      }
   }
 
   std::string

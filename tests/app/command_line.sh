@@ -224,6 +224,9 @@ expect 0 "warning: Time integration/Explicit Newmark: Time integration/Method = 
 grep -q '"warnings": \["Time integration/Explicit Newmark: Time integration/Method = energy stepping does not read' ignored/summary.json || fail "summary.json lacks the ignored integrator settings"
 expect 0 "warning: Time integration/Implicit integrators: Time integration/Method = energy stepping does not read this subsection \(arkode irk, arkode midpoint, energy momentum and ida bdf do\)" -- run.prm -s "Time integration/Implicit integrators/Relative tolerance=1e-3" -s "Output directory=ignored"
 expect 0 "warning: Postprocessors/Field output: set, but Postprocessors/List = history does not name field output, which reads it; its settings are ignored\.$" -- run.prm -s "Postprocessors/List=history" -s "Postprocessors/Field output/Interval=1" -s "Output directory=ignored"
+# An adaptive implicit method whose smallest step exceeds its first one: refused, not a failed run.
+expect 1 "Time integration/Implicit integrators/Minimum step: 10 exceeds the initial step of the adaptive methods \(Time step = 0.001\); it must be at most that\.$" -- run.prm -s "Time integration/Method=ida bdf" -s "Time integration/Implicit integrators/Minimum step=10"
+expect 1 "Time integration/Implicit integrators/Minimum step: 10 exceeds the initial step" -- run.prm -s "Time integration/Method=arkode irk" -s "Time integration/Implicit integrators/Minimum step=10"
 expect 0 "completed" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Explicit Newmark/Time step=0.01" -s "Output directory=read"
 if grep -q "warning" err.txt; then fail "a run that reads every subsection it sets warns: $(cat err.txt)"; fi
 # A scene as --print-parameters prints it (one body, at its defaults) is a valid input.

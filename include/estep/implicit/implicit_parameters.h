@@ -65,6 +65,11 @@ namespace estep
      * clear message. */
     void
     check() const;
+
+    /** check() and what only the adaptive methods (ida bdf, arkode irk)
+     * need: a minimum step not above their initial step. */
+    void
+    check_adaptive() const;
   };
 
   /**
