@@ -678,7 +678,9 @@ namespace estep
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
-      const std::vector<std::string> ignored           = ignored_settings(prm);
+      std::vector<std::string>       ignored = problem.ignored_settings;
+      for (const std::string &warning : ignored_settings(prm))
+        ignored.push_back(warning);
       if (writes_output)
         for (const std::string &warning : ignored)
           std::cerr << ("estep: warning: " + warning + "\n");

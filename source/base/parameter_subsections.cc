@@ -3,7 +3,11 @@
 
 #include <estep/base/parameter_subsections.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace estep
@@ -30,6 +34,19 @@ namespace estep
         return text;
       return trimmed(text.substr(0, equals)) + " = " +
              trimmed(text.substr(equals + 1));
+    }
+
+    /** "a does", "a and b do", "a, b and c do". */
+    std::string
+    readers_text(const std::vector<std::string> &names)
+    {
+      std::string text;
+      for (std::size_t i = 0; i < names.size(); ++i)
+        text += (i == 0                ? "" :
+                 i + 1 == names.size() ? " and " :
+                                         ", ") +
+                names[i];
+      return text + (names.size() == 1 ? " does" : " do");
     }
   } // namespace
 
@@ -113,20 +130,64 @@ namespace estep
 
 
 
+  std::vector<std::string>
+  entries_unread_by_type(
+    const dealii::ParameterHandler &prm,
+    const std::string              &path,
+    const std::vector<std::pair<std::string, std::vector<std::string>>>
+      &readers)
+  {
+    std::stringstream json;
+    prm.print_parameters(json, dealii::ParameterHandler::JSON);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(json, tree);
+    // The subsection, by the names of its parents (the tree's own paths
+    // would split names at their dots).
+    const boost::property_tree::ptree *section = &tree;
+    for (const std::string &name :
+         dealii::Utilities::split_string_list(path, '/'))
+      {
+        const auto child = section->find(name);
+        if (child == section->not_found())
+          return {};
+        section = &child->second;
+      }
+    const auto without_blanks = [](std::string text) {
+      text.erase(std::remove_if(text.begin(),
+                                text.end(),
+                                [](const char c) {
+                                  return std::isspace(
+                                    static_cast<unsigned char>(c));
+                                }),
+                 text.end());
+      return text;
+    };
+    const std::string        type = section->get<std::string>("Type.value");
+    std::vector<std::string> warnings;
+    for (const auto &[entry, types] : readers)
+      {
+        const auto child = section->find(entry);
+        if (child == section->not_found() ||
+            std::find(types.begin(), types.end(), type) != types.end() ||
+            without_blanks(child->second.get<std::string>("value")) ==
+              without_blanks(child->second.get<std::string>("default_value")))
+          continue;
+        warnings.push_back(path + "/" + entry + ": " + path +
+                           "/Type = " + type + " does not read it (" +
+                           readers_text(types) + "); it is ignored.");
+      }
+    return warnings;
+  }
+
+
+
   std::string
   unread_subsection_text(const std::string      &path,
                          const UnreadSubsection &unread,
                          const std::string      &choice)
   {
-    std::string                     readers;
-    const std::vector<std::string> &names = unread.readers;
-    for (std::size_t i = 0; i < names.size(); ++i)
-      readers += (i == 0                ? "" :
-                  i + 1 == names.size() ? " and " :
-                                          ", ") +
-                 names[i];
     return (path.empty() ? "" : path + "/") + unread.name + ": " + choice +
-           " does not read this subsection (" + readers +
-           (names.size() == 1 ? " does" : " do") + ")";
+           " does not read this subsection (" + readers_text(unread.readers) +
+           ")";
   }
 } // namespace estep

@@ -147,6 +147,21 @@ namespace estep
     shift          = parse_point(prm.get("Shift"), "Mesh/Shift");
   }
 
+  std::vector<std::pair<std::string, std::vector<std::string>>>
+  MeshDescription::type_readers()
+  {
+    const std::vector<std::string> generated = {"deal.II", "deal.II 24"};
+    return {{"Subdivisions", {"box"}},
+            {"Lower corner", {"box"}},
+            {"Upper corner", {"box"}},
+            {"Radius", {"ball"}},
+            {"Mesh size", {"ball"}},
+            {"Generator", generated},
+            {"Generator arguments", generated},
+            {"Refinements", generated},
+            {"File name", {"gmsh"}}};
+  }
+
   void
   make_mesh(const MeshDescription &d, dealii::Triangulation<3, 3> &tria)
   {

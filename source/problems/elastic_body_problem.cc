@@ -4,6 +4,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/exception_text.h>
+#include <estep/base/parameter_subsections.h>
 #include <estep/base/point_entry.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/fem/distributed_cell_data.h>
@@ -165,6 +166,20 @@ namespace estep
         .add("material", material.material->name())
         .add("density", material.density);
       problem.system = std::move(body);
+      // Entries that the chosen mesh type and velocity type do not read.
+      problem.ignored_settings =
+        entries_unread_by_type(prm,
+                               "Elastic body/Mesh",
+                               MeshDescription::type_readers());
+      for (const std::string &warning :
+           entries_unread_by_type(prm,
+                                  "Elastic body/Initial velocity",
+                                  {{"Translational velocity", {"rigid motion"}},
+                                   {"Angular velocity", {"rigid motion"}},
+                                   {"Rotation centre", {"rigid motion"}},
+                                   {"Function expression", {"function"}},
+                                   {"Function constants", {"function"}}}))
+        problem.ignored_settings.push_back(warning);
       return problem;
     }
   } // namespace

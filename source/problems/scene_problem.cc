@@ -709,6 +709,24 @@ namespace estep
           scene->add_obstacle_surface(surface.points, triangles);
         }
       problem.system = std::move(scene);
+      // Entries that the chosen mesh and velocity types do not read.
+      const std::vector<std::pair<std::string, std::vector<std::string>>>
+        velocity_readers = {{"Translational velocity", {"rigid motion"}},
+                            {"Angular velocity", {"rigid motion"}},
+                            {"Rotation centre", {"rigid motion"}},
+                            {"Function expression", {"function"}},
+                            {"Variable names", {"function"}},
+                            {"Function constants", {"function"}}};
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          const std::string section = "Scene/" + body_section(b);
+          for (const std::string &warning : entries_unread_by_type(
+                 prm, section + "/Mesh", MeshDescription::type_readers()))
+            problem.ignored_settings.push_back(warning);
+          for (const std::string &warning : entries_unread_by_type(
+                 prm, section + "/Initial velocity", velocity_readers))
+            problem.ignored_settings.push_back(warning);
+        }
       return problem;
     }
   } // namespace

@@ -224,6 +224,14 @@ expect 0 "warning: Time integration/Explicit Newmark: Time integration/Method = 
 grep -q '"warnings": \["Time integration/Explicit Newmark: Time integration/Method = energy stepping does not read' ignored/summary.json || fail "summary.json lacks the ignored integrator settings"
 expect 0 "warning: Time integration/Implicit integrators: Time integration/Method = energy stepping does not read this subsection \(arkode irk, arkode midpoint, energy momentum and ida bdf do\)" -- run.prm -s "Time integration/Implicit integrators/Relative tolerance=1e-3" -s "Output directory=ignored"
 expect 0 "warning: Postprocessors/Field output: set, but Postprocessors/List = history does not name field output, which reads it; its settings are ignored\.$" -- run.prm -s "Postprocessors/List=history" -s "Postprocessors/Field output/Interval=1" -s "Output directory=ignored"
+# Entries that only other mesh or velocity types read, changed from their defaults (blanks
+# aside): a warning each.
+expect 0 "warning: Elastic body/Mesh/Upper corner: Elastic body/Mesh/Type = ball does not read it \(box does\); it is ignored\.$" -- "${cube[@]}" -s "Elastic body/Mesh/Type=ball" -s "Elastic body/Mesh/Upper corner=2, 2, 2" -s "Time integration/End time=0.01" -s "Output directory=unread_entries"
+grep -q "Elastic body/Mesh/Subdivisions: Elastic body/Mesh/Type = ball does not read it (box does)" err.txt || fail "no warning for the box's subdivisions of a ball mesh: $(cat err.txt)"
+expect 0 "warning: Elastic body/Initial velocity/Function expression: Elastic body/Initial velocity/Type = rigid motion does not read it \(function does\); it is ignored\.$" -- "${cube[@]}" -s "Elastic body/Initial velocity/Function expression=1; 0; 0" -s "Time integration/End time=0.01" -s "Output directory=unread_entries"
+grep -q '"warnings": \[.*Elastic body/Initial velocity/Function expression: ' unread_entries/summary.json || fail "summary.json lacks the ignored velocity function"
+expect 0 "completed" -- "${cube[@]}" -s "Elastic body/Mesh/Upper corner=1,1,  1" -s "Time integration/End time=0.01" -s "Output directory=unread_entries"
+if grep -q "Upper corner" err.txt; then fail "an entry at its default but for blanks warns: $(cat err.txt)"; fi
 # An adaptive implicit method whose smallest step exceeds its first one: refused, not a failed run.
 expect 1 "Time integration/Implicit integrators/Minimum step: 10 exceeds the initial step of the adaptive methods \(Time step = 0.001\); it must be at most that\.$" -- run.prm -s "Time integration/Method=ida bdf" -s "Time integration/Implicit integrators/Minimum step=10"
 expect 1 "Time integration/Implicit integrators/Minimum step: 10 exceeds the initial step" -- run.prm -s "Time integration/Method=arkode irk" -s "Time integration/Implicit integrators/Minimum step=10"

@@ -53,6 +53,21 @@ namespace estep
                              const std::vector<std::string>       &chosen);
 
   /**
+   * Warnings for the entries of the subsection @p path of @p prm that its
+   * entry `Type` does not read: each entry of @p readers (an entry's name
+   * and the values of `Type` that read it) whose value differs, blanks
+   * aside, from its declared default while `Type` has another value, in a
+   * sentence "path/entry: path/Type = value does not read it (box does); it
+   * is ignored."
+   */
+  std::vector<std::string>
+  entries_unread_by_type(
+    const dealii::ParameterHandler &prm,
+    const std::string              &path,
+    const std::vector<std::pair<std::string, std::vector<std::string>>>
+      &readers);
+
+  /**
    * "path/name: choice does not read this subsection (reader does)" for the
    * subsection @p unread inside @p path, with @p choice the entry and value
    * that chose the plugins ("Time integration/Method = explicit newmark").

@@ -3,6 +3,8 @@
 
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dealii
 {
@@ -87,6 +89,11 @@ namespace estep
     /** Read the entries declared by declare_parameters(). */
     void
     parse_parameters(const dealii::ParameterHandler &prm);
+
+    /** Each entry that only some types read, with those types (for
+     * entries_unread_by_type()). */
+    static std::vector<std::pair<std::string, std::vector<std::string>>>
+    type_readers();
   };
 
   /**

@@ -28,6 +28,9 @@ namespace estep
      * supports, obstacle surfaces, connectivity); 0 for none. A checkpoint
      * keeps it with q0's and v0's: a resume on changed files is refused. */
     std::uint64_t geometry_checksum = 0;
+    /** Settings of the input that the problem does not read (sentences for
+     * warnings, see entries_unread_by_type()). */
+    std::vector<std::string> ignored_settings;
   };
 
   /**
