@@ -425,22 +425,23 @@ namespace estep
       return integrator;
     }
 
-    /** The settings of the input that the chosen method and the listed
-     * postprocessors do not read (ignored_integrator_settings(),
+    /** The settings of the input that the run ignores: the problem's, then
+     * those of the other time integrators and of the postprocessors missing
+     * from the List (ignored_integrator_settings(),
      * ignored_postprocessor_settings()). */
     std::vector<std::string>
-    ignored_settings(dealii::ParameterHandler &prm)
+    ignored_settings(dealii::ParameterHandler &prm, const Problem &problem)
     {
+      std::vector<std::string> warnings = problem.ignored_settings;
+      const auto               add = [&](const std::vector<std::string> &more) {
+        warnings.insert(warnings.end(), more.begin(), more.end());
+      };
       prm.enter_subsection("Time integration");
-      std::vector<std::string> warnings = ignored_integrator_settings(prm);
+      add(ignored_integrator_settings(prm));
       prm.leave_subsection();
       prm.enter_subsection("Postprocessors");
-      const std::vector<std::string> postprocessing =
-        ignored_postprocessor_settings(prm);
+      add(ignored_postprocessor_settings(prm));
       prm.leave_subsection();
-      warnings.insert(warnings.end(),
-                      postprocessing.begin(),
-                      postprocessing.end());
       return warnings;
     }
 
@@ -678,9 +679,7 @@ namespace estep
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
-      std::vector<std::string>       ignored = problem.ignored_settings;
-      for (const std::string &warning : ignored_settings(prm))
-        ignored.push_back(warning);
+      const std::vector<std::string> ignored = ignored_settings(prm, problem);
       if (writes_output)
         for (const std::string &warning : ignored)
           std::cerr << ("estep: warning: " + warning + "\n");
