@@ -680,9 +680,6 @@ namespace estep
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
       const std::vector<std::string> ignored = ignored_settings(prm, problem);
-      if (writes_output)
-        for (const std::string &warning : ignored)
-          std::cerr << ("estep: warning: " + warning + "\n");
       // The other ranks hold the same state: they run only the
       // postprocessors that write a part of their own.
       auto postprocessors =
@@ -796,6 +793,10 @@ namespace estep
           return exit_failed;
         }
 
+      // Printed once the run starts, so that a refusal before stays one line.
+      if (writes_output)
+        for (const std::string &warning : ignored)
+          std::cerr << ("estep: warning: " + warning + "\n");
       TimeLoopResult result = run_time_loop_with_signals(*integrator,
                                                          parameters,
                                                          parameters_as_read,
