@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <sstream>
+#include <stdexcept>
 
 namespace estep
 {
@@ -99,26 +100,29 @@ namespace estep
                              const std::vector<PluginDeclaration> &plugins,
                              const std::vector<std::string>       &chosen)
   {
-    const auto sections_of = [](const PluginDeclaration &plugin) {
-      dealii::ParameterHandler declared;
-      if (plugin.declare_parameters != nullptr)
-        plugin.declare_parameters(declared);
-      return printed_subsections(declared);
-    };
-    std::map<std::string, std::vector<std::string>> read;
+    // Each plugin's subsections with their defaults.
+    std::vector<std::map<std::string, std::vector<std::string>>> declared;
+    std::map<std::string, std::vector<std::string>>              read;
     for (const PluginDeclaration &plugin : plugins)
-      if (std::find(chosen.begin(), chosen.end(), plugin.name) != chosen.end())
-        read.merge(sections_of(plugin));
+      {
+        dealii::ParameterHandler own;
+        if (plugin.declare_parameters != nullptr)
+          plugin.declare_parameters(own);
+        declared.push_back(printed_subsections(own));
+        if (std::find(chosen.begin(), chosen.end(), plugin.name) !=
+            chosen.end())
+          read.insert(declared.back().begin(), declared.back().end());
+      }
     const auto given = printed_subsections(prm, path);
     // Per subsection no chosen plugin reads: the plugins that do, and
     // whether it differs from the defaults of one of them.
     std::map<std::string, std::pair<std::vector<std::string>, bool>> others;
-    for (const PluginDeclaration &plugin : plugins)
-      for (const auto &[section, defaults] : sections_of(plugin))
+    for (std::size_t p = 0; p < plugins.size(); ++p)
+      for (const auto &[section, defaults] : declared[p])
         if (read.count(section) == 0 && given.count(section) > 0)
           {
             auto &[readers, changed] = others[section];
-            readers.push_back(plugin.name);
+            readers.push_back(plugins[p].name);
             changed = changed || given.at(section) != defaults;
           }
     std::vector<UnreadSubsection> unread;
@@ -131,27 +135,13 @@ namespace estep
 
 
   std::vector<std::string>
-  entries_unread_by_type(
-    const dealii::ParameterHandler &prm,
-    const std::string              &path,
-    const std::vector<std::pair<std::string, std::vector<std::string>>>
-      &readers)
+  entries_unread_by_type(const dealii::ParameterHandler     &prm,
+                         const std::vector<TypedSubsection> &subsections)
   {
     std::stringstream json;
     prm.print_parameters(json, dealii::ParameterHandler::JSON);
     boost::property_tree::ptree tree;
     boost::property_tree::read_json(json, tree);
-    // The subsection, by the names of its parents (the tree's own paths
-    // would split names at their dots).
-    const boost::property_tree::ptree *section = &tree;
-    for (const std::string &name :
-         dealii::Utilities::split_string_list(path, '/'))
-      {
-        const auto child = section->find(name);
-        if (child == section->not_found())
-          return {};
-        section = &child->second;
-      }
     const auto without_blanks = [](std::string text) {
       text.erase(std::remove_if(text.begin(),
                                 text.end(),
@@ -162,19 +152,35 @@ namespace estep
                  text.end());
       return text;
     };
-    const std::string        type = section->get<std::string>("Type.value");
     std::vector<std::string> warnings;
-    for (const auto &[entry, types] : readers)
+    for (const auto &[path, readers] : subsections)
       {
-        const auto child = section->find(entry);
-        if (child == section->not_found() ||
-            std::find(types.begin(), types.end(), type) != types.end() ||
-            without_blanks(child->second.get<std::string>("value")) ==
-              without_blanks(child->second.get<std::string>("default_value")))
-          continue;
-        warnings.push_back(path + "/" + entry + ": " + path +
-                           "/Type = " + type + " does not read it (" +
-                           readers_text(types) + "); it is ignored.");
+        // The subsection, by the names of its parents (the tree's own
+        // paths would split names at their dots).
+        const boost::property_tree::ptree *section = &tree;
+        for (const std::string &name :
+             dealii::Utilities::split_string_list(path, '/'))
+          {
+            const auto child = section->find(name);
+            if (child == section->not_found())
+              throw std::logic_error("entries_unread_by_type: no subsection " +
+                                     path);
+            section = &child->second;
+          }
+        const std::string type = section->get<std::string>("Type.value");
+        for (const auto &[entry, types] : readers)
+          {
+            const auto child = section->find(entry);
+            if (child == section->not_found() ||
+                std::find(types.begin(), types.end(), type) != types.end() ||
+                without_blanks(child->second.get<std::string>("value")) ==
+                  without_blanks(
+                    child->second.get<std::string>("default_value")))
+              continue;
+            warnings.push_back(path + "/" + entry + ": " + path +
+                               "/Type = " + type + " does not read it (" +
+                               readers_text(types) + "); it is ignored.");
+          }
       }
     return warnings;
   }

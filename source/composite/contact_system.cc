@@ -729,11 +729,7 @@ namespace estep
     // boundary: without intersecting boundaries, either all of a piece lies
     // inside a body or none of it does. The pieces: the classes of the
     // vertices joined by triangle edges.
-    unsigned int n_vertices = 0;
-    for (const auto &triangle : triangles)
-      n_vertices =
-        std::max(n_vertices,
-                 1 + *std::max_element(triangle.begin(), triangle.end()));
+    const unsigned int        n_vertices = q.size() / 3;
     std::vector<unsigned int> parent(n_vertices);
     std::iota(parent.begin(), parent.end(), 0u);
     const auto root = [&](unsigned int p) {

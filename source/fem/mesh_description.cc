@@ -147,7 +147,7 @@ namespace estep
     shift          = parse_point(prm.get("Shift"), "Mesh/Shift");
   }
 
-  std::vector<std::pair<std::string, std::vector<std::string>>>
+  TypeReaders
   MeshDescription::type_readers()
   {
     const std::vector<std::string> generated = {"deal.II", "deal.II 24"};

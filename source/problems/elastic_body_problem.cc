@@ -167,19 +167,10 @@ namespace estep
         .add("density", material.density);
       problem.system = std::move(body);
       // Entries that the chosen mesh type and velocity type do not read.
-      problem.ignored_settings =
-        entries_unread_by_type(prm,
-                               "Elastic body/Mesh",
-                               MeshDescription::type_readers());
-      for (const std::string &warning :
-           entries_unread_by_type(prm,
-                                  "Elastic body/Initial velocity",
-                                  {{"Translational velocity", {"rigid motion"}},
-                                   {"Angular velocity", {"rigid motion"}},
-                                   {"Rotation centre", {"rigid motion"}},
-                                   {"Function expression", {"function"}},
-                                   {"Function constants", {"function"}}}))
-        problem.ignored_settings.push_back(warning);
+      problem.ignored_settings = entries_unread_by_type(
+        prm,
+        {{"Elastic body/Mesh", MeshDescription::type_readers()},
+         {"Elastic body/Initial velocity", initial_velocity_type_readers()}});
       return problem;
     }
   } // namespace

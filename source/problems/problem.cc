@@ -48,6 +48,19 @@ namespace estep
 
 
 
+  TypeReaders
+  initial_velocity_type_readers()
+  {
+    return {{"Translational velocity", {"rigid motion"}},
+            {"Angular velocity", {"rigid motion"}},
+            {"Rotation centre", {"rigid motion"}},
+            {"Function expression", {"function"}},
+            {"Variable names", {"function"}},
+            {"Function constants", {"function"}}};
+  }
+
+
+
   Problem
   create_problem(dealii::ParameterHandler &prm)
   {

@@ -710,23 +710,15 @@ namespace estep
         }
       problem.system = std::move(scene);
       // Entries that the chosen mesh and velocity types do not read.
-      const std::vector<std::pair<std::string, std::vector<std::string>>>
-        velocity_readers = {{"Translational velocity", {"rigid motion"}},
-                            {"Angular velocity", {"rigid motion"}},
-                            {"Rotation centre", {"rigid motion"}},
-                            {"Function expression", {"function"}},
-                            {"Variable names", {"function"}},
-                            {"Function constants", {"function"}}};
+      std::vector<TypedSubsection> typed;
       for (unsigned int b = 0; b < n_bodies; ++b)
         {
           const std::string section = "Scene/" + body_section(b);
-          for (const std::string &warning : entries_unread_by_type(
-                 prm, section + "/Mesh", MeshDescription::type_readers()))
-            problem.ignored_settings.push_back(warning);
-          for (const std::string &warning : entries_unread_by_type(
-                 prm, section + "/Initial velocity", velocity_readers))
-            problem.ignored_settings.push_back(warning);
+          typed.push_back({section + "/Mesh", MeshDescription::type_readers()});
+          typed.push_back(
+            {section + "/Initial velocity", initial_velocity_type_readers()});
         }
+      problem.ignored_settings = entries_unread_by_type(prm, typed);
       return problem;
     }
   } // namespace

@@ -53,20 +53,29 @@ namespace estep
                              const std::vector<PluginDeclaration> &plugins,
                              const std::vector<std::string>       &chosen);
 
+  /** The entries of a subsection that only some values of its entry
+   * `Type` read, each with those values. */
+  using TypeReaders =
+    std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+  /** A subsection (its '/'-separated path) and its TypeReaders. */
+  struct TypedSubsection
+  {
+    std::string path;
+    TypeReaders readers;
+  };
+
   /**
-   * Warnings for the entries of the subsection @p path of @p prm that its
-   * entry `Type` does not read: each entry of @p readers (an entry's name
-   * and the values of `Type` that read it) whose value differs, blanks
-   * aside, from its declared default while `Type` has another value, in a
-   * sentence "path/entry: path/Type = value does not read it (box does); it
-   * is ignored."
+   * Warnings for the entries that the `Type` of their subsection does not
+   * read: in each of @p subsections, each entry of its readers whose value
+   * differs, blanks aside, from its declared default while `Type` has
+   * another value, in a sentence "path/entry: path/Type = value does not
+   * read it (box does); it is ignored." An entry the subsection does not
+   * declare is skipped.
    */
   std::vector<std::string>
-  entries_unread_by_type(
-    const dealii::ParameterHandler &prm,
-    const std::string              &path,
-    const std::vector<std::pair<std::string, std::vector<std::string>>>
-      &readers);
+  entries_unread_by_type(const dealii::ParameterHandler     &prm,
+                         const std::vector<TypedSubsection> &subsections);
 
   /**
    * "path/name: choice does not read this subsection (reader does)" for the

@@ -1,10 +1,10 @@
 #ifndef estep_fem_mesh_description_h
 #define estep_fem_mesh_description_h
 
+#include <estep/base/parameter_subsections.h>
+
 #include <array>
 #include <string>
-#include <utility>
-#include <vector>
 
 namespace dealii
 {
@@ -92,7 +92,7 @@ namespace estep
 
     /** Each entry that only some types read, with those types (for
      * entries_unread_by_type()). */
-    static std::vector<std::pair<std::string, std::vector<std::string>>>
+    static TypeReaders
     type_readers();
   };
 

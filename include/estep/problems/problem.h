@@ -54,6 +54,11 @@ namespace estep
   void
   declare_problem_parameters(dealii::ParameterHandler &prm);
 
+  /** The entries of an `Initial velocity` subsection that only its `Type`
+   * rigid motion or function reads (entries_unread_by_type()). */
+  TypeReaders
+  initial_velocity_type_readers();
+
   /**
    * Declare the top-level subsection `Material` (declare_material_parameters())
    * that the problems with one material read: every problem's parameters
