@@ -314,9 +314,14 @@ namespace estep
         const BlockRange   cells  = block_range(b, n_cells);
         const unsigned int count  = cells.end - cells.begin;
         const unsigned int h      = at(cells.begin);
-        double            *J      = scratch + h;
-        double            *dJ     = slope ? J + n_held : nullptr;
         const double      *volume = body.cell_data().volume.data() + h;
+        // At s = 0 the cubics are their constant terms: Horner's c0 + 0 (...)
+        // would give the same bits, one pass over the cells later.
+        if (s == 0. && !slope)
+          return LineValue{
+            body.material().sum_volumetric_energy(c0 + h, volume, count), 0.};
+        double *J  = scratch + h;
+        double *dJ = slope ? J + n_held : nullptr;
         evaluate_cubics(s, c0 + h, c1 + h, c2 + h, c3 + h, count, J, dJ);
         if (slope)
           return body.material().sum_volumetric_energy_and_slope(J,

@@ -2,8 +2,10 @@
 
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdint>
 #include <iomanip>
+#include <limits>
 #include <stdexcept>
 
 namespace estep
@@ -42,11 +44,24 @@ namespace estep
         }
     }
 
-    /** The values as Float32, converted. */
+    /** The values of @p what as Float32, converted; a finite value beyond
+     * its range (a blow-up) is an error rather than an undefined conversion.
+     */
     std::vector<float>
-    as_float(const std::vector<double> &values)
+    as_float(const std::vector<double> &values, const std::string &what)
     {
-      return std::vector<float>(values.begin(), values.end());
+      std::vector<float> converted(values.size());
+      for (std::size_t i = 0; i < values.size(); ++i)
+        {
+          if (std::isfinite(values[i]) &&
+              std::abs(values[i]) > std::numeric_limits<float>::max())
+            throw std::range_error(
+              "VtuFile: " + what + " has the value " +
+              std::to_string(values[i]) +
+              ", beyond the range of the file's 32-bit floats.");
+          converted[i] = static_cast<float>(values[i]);
+        }
+      return converted;
     }
 
     void
@@ -78,7 +93,8 @@ namespace estep
                 std::size_t(n_entities) * field.n_components)
             throw std::invalid_argument("VtuFile: the field <" + field.name +
                                         "> has the wrong number of values.");
-          const std::vector<float> values = as_float(*field.values);
+          const std::vector<float> values =
+            as_float(*field.values, "the field <" + field.name + ">");
           write_array(out,
                       "Float32",
                       field.name,
@@ -139,7 +155,7 @@ namespace estep
       if (p >= n_points)
         throw std::invalid_argument(
           "VtuFile: a cell refers to a point that does not exist.");
-    const std::vector<float> xyz = as_float(points);
+    const std::vector<float> xyz = as_float(points, "a point coordinate");
     encoded_points = encode(xyz.data(), xyz.size() * sizeof(float));
     const std::vector<std::int32_t> connectivity(tetrahedra.begin(),
                                                  tetrahedra.end());

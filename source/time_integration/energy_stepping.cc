@@ -539,22 +539,27 @@ namespace estep
         "spaced points of windows doubling from twice the previous step, "
         "the first bracket bisected (Bisection steps); it steps over "
         "crossings that come back between two samples (grazing ones).");
-      prm.declare_entry("Samples per window",
-                        "8",
-                        dealii::Patterns::Integer(1, 1000000),
-                        "Sampled search only: samples of V per search window.");
+      const SamplingSettings sampling;
+      prm.declare_entry(
+        "Samples per window",
+        std::to_string(sampling.samples_per_window),
+        dealii::Patterns::Integer(1, 1000000),
+        "Sampled search only (set with the certified search, an error): "
+        "samples of V per search window.");
       prm.declare_entry(
         "Bisection steps",
-        "60",
+        std::to_string(sampling.bisection_steps),
         dealii::Patterns::Integer(1, 1000),
-        "Sampled search only: the most bisections locating a bracketed "
+        "Sampled search only (set with the certified search, an error): "
+        "the most bisections locating a bracketed "
         "crossing (fewer once the bracket reaches the round-off of the "
         "time).");
       prm.declare_entry(
         "Audit sampled search",
         "false",
         dealii::Patterns::Bool(),
-        "Sampled search only: search every flight with the certified search "
+        "Sampled search only (set with the certified search, an error): "
+        "search every flight with the certified search "
         "too and count in summary.json the crossings the sampled search "
         "stepped over (crossings stepped over (audit)); the run follows the "
         "sampled answers. Costs about one certified search per step more.");
@@ -580,6 +585,19 @@ namespace estep
       if (!(c < 1.))
         throw std::runtime_error("Time integration/Energy stepping/Terrace "
                                  "offset: must be smaller than 1.");
+      // No setting of the sampled search may be silently ignored.
+      const SamplingSettings defaults;
+      const auto             only_sampled = [&](const std::string &entry) {
+        return std::runtime_error(
+          "Time integration/Energy stepping/" + entry +
+          ": only Crossing search = sampled uses it (Crossing search = "
+                      "certified).");
+      };
+      if (!sampled &&
+          sampling.samples_per_window != defaults.samples_per_window)
+        throw only_sampled("Samples per window");
+      if (!sampled && sampling.bisection_steps != defaults.bisection_steps)
+        throw only_sampled("Bisection steps");
       if (audit && !sampled)
         throw std::runtime_error(
           "Time integration/Energy stepping/Audit sampled search: audits the "

@@ -147,6 +147,11 @@ printf 'set Output directory = run\nsubsection Time integraton\n  set End time =
 expect 1 "Line <2> of file <section.prm>: There is no such subsection to be entered: Time integraton$" -- section.prm
 printf 'set Output directory = run\nsubsection Time integration\n  subsection Energy stepping\n    set Energy step = -1\n  end\nend\n' > pattern.prm
 expect 1 "Line <4> of file <pattern.prm>.*Energy step" -- pattern.prm
+# A setting of the sampled search in a certified run is refused, not ignored.
+expect 1 "Time integration/Energy stepping/Samples per window: only Crossing search = sampled uses it" -- run.prm -s "Time integration/Energy stepping/Samples per window=16"
+expect 1 "Time integration/Energy stepping/Bisection steps: only Crossing search = sampled uses it" -- run.prm -s "Time integration/Energy stepping/Bisection steps=30"
+expect 1 "Time integration/Energy stepping/Audit sampled search: audits the sampled search" -- run.prm -s "Time integration/Energy stepping/Audit sampled search=true"
+expect 0 "completed" -- run.prm -s "Output directory=sampled" -s "Time integration/Energy stepping/Crossing search=sampled" -s "Time integration/Energy stepping/Samples per window=16"
 # The same in JSON: the file and the entry's full path.
 printf '{\n  "Output directory": "run",\n  "Time integration": {\n    "Energy stepping": { "Energy stepp": "1" }\n  }\n}\n' > unknown.json
 expect 1 "^estep: error: File <unknown.json>: there is no entry <Time integration/Energy stepping/Energy stepp>" -- unknown.json
