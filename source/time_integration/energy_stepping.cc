@@ -587,7 +587,7 @@ namespace estep
                                  "offset: must be smaller than 1.");
       // No setting of the sampled search may be silently ignored.
       const SamplingSettings defaults;
-      const auto             only_sampled = [&](const std::string &entry) {
+      const auto             only_sampled = [](const std::string &entry) {
         return std::runtime_error(
           "Time integration/Energy stepping/" + entry +
           ": only Crossing search = sampled uses it (Crossing search = "
