@@ -152,22 +152,27 @@ namespace estep
                  text.end());
       return text;
     };
+    // A subsection or entry, by the names of its parents (the tree's own
+    // paths would split names at their dots).
+    const auto find = [&](const std::string &path) {
+      const boost::property_tree::ptree *node = &tree;
+      for (const std::string &name :
+           dealii::Utilities::split_string_list(path, '/'))
+        {
+          const auto child = node->find(name);
+          if (child == node->not_found())
+            throw std::logic_error("entries_unread_by_type: no " + path);
+          node = &child->second;
+        }
+      return node;
+    };
     std::vector<std::string> warnings;
-    for (const auto &[path, readers] : subsections)
+    for (const auto &[path, readers, given_choice] : subsections)
       {
-        // The subsection, by the names of its parents (the tree's own
-        // paths would split names at their dots).
-        const boost::property_tree::ptree *section = &tree;
-        for (const std::string &name :
-             dealii::Utilities::split_string_list(path, '/'))
-          {
-            const auto child = section->find(name);
-            if (child == section->not_found())
-              throw std::logic_error("entries_unread_by_type: no subsection " +
-                                     path);
-            section = &child->second;
-          }
-        const std::string type = section->get<std::string>("Type.value");
+        const boost::property_tree::ptree *section = find(path);
+        const std::string                  choice =
+          given_choice.empty() ? path + "/Type" : given_choice;
+        const std::string type = find(choice)->get<std::string>("value");
         for (const auto &[entry, types] : readers)
           {
             const auto child = section->find(entry);
@@ -177,8 +182,8 @@ namespace estep
                   without_blanks(
                     child->second.get<std::string>("default_value")))
               continue;
-            warnings.push_back(path + "/" + entry + ": " + path +
-                               "/Type = " + type + " does not read it (" +
+            warnings.push_back(path + "/" + entry + ": " + choice + " = " +
+                               type + " does not read it (" +
                                readers_text(types) + "); it is ignored.");
           }
       }

@@ -28,6 +28,14 @@ namespace estep
 
 
 
+  std::vector<std::string>
+  ImplicitIntegrator::warnings() const
+  {
+    return settings.unread_entries;
+  }
+
+
+
   void
   ImplicitIntegrator::save_state(StateWriter &out) const
   {

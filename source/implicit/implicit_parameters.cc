@@ -1,5 +1,6 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/parameter_subsections.h>
 #include <estep/implicit/implicit_parameters.h>
 
 #include <cmath>
@@ -156,6 +157,25 @@ namespace estep
     p.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");
     prm.leave_subsection();
     p.check();
+
+    // The entries that only some of the methods, or only CG, read.
+    const std::string section = "Time integration/Implicit integrators";
+    const std::vector<std::string> adaptive = {"arkode irk", "ida bdf"};
+    p.unread_entries                        = entries_unread_by_type(
+      prm,
+      {{section,
+                               {{"Relative tolerance", adaptive},
+                                {"Absolute tolerance", adaptive},
+                                {"Minimum step", adaptive},
+                                {"Maximum BDF order", {"ida bdf"}},
+                                {"ARKode order", {"arkode irk"}},
+                                {"Newton tolerance", {"arkode midpoint", "energy momentum"}},
+                                {"Jacobian update interval", {"arkode irk", "arkode midpoint"}}},
+                               "Time integration/Method"},
+                              {section,
+                               {{"Linear tolerance", {"cg amg"}},
+                                {"Maximum linear iterations", {"cg amg"}}},
+                               section + "/Linear solver"}});
     return p;
   }
 } // namespace estep

@@ -25,29 +25,46 @@ namespace
     return *body;
   }
 
-  /** The implicit integrator @p method from @p prm (the subsection Implicit
-   * integrators at its top level) with the time step @p dt, as the registry
-   * builds it. */
+  /** The implicit integrator @p method from @p prm (parse()) with the time
+   * step @p dt, as the registry builds it. */
   std::unique_ptr<estep::TimeIntegrator>
   create(const std::string             &method,
          dealii::ParameterHandler      &prm,
          const estep::MechanicalSystem &system,
          const double                   dt)
   {
+    prm.enter_subsection("Time integration");
+    prm.set("Method", method);
     prm.enter_subsection("Implicit integrators");
     prm.set("Time step", dt);
     prm.leave_subsection();
-    return estep::integrator_registry()
-      .get(method, "Time integration/Method")
-      .create(prm, system);
+    std::unique_ptr<estep::TimeIntegrator> integrator;
+    try
+      {
+        integrator = estep::integrator_registry()
+                       .get(method, "Time integration/Method")
+                       .create(prm, system);
+      }
+    catch (...)
+      {
+        prm.leave_subsection();
+        throw;
+      }
+    prm.leave_subsection();
+    return integrator;
   }
 
-  /** A ParameterHandler with the implicit subsection, and @p text parsed. */
+  /** A ParameterHandler with the subsection Time integration (its Method
+   * and the implicit subsection), and @p text parsed inside it. */
   void
   parse(dealii::ParameterHandler &prm, const std::string &text)
   {
+    prm.enter_subsection("Time integration");
+    prm.declare_entry("Method", "ida bdf");
     estep::declare_implicit_parameters(prm);
-    prm.parse_input_from_string(text);
+    prm.leave_subsection();
+    prm.parse_input_from_string("subsection Time integration\n" + text +
+                                "end\n");
   }
 
   TEST(ImplicitParameters, DefaultsAndParsing)
@@ -59,7 +76,9 @@ namespace
           "  set Linear solver = cg amg\n"
           "  set Newton tolerance = 1e-9\n"
           "end\n");
+    prm.enter_subsection("Time integration");
     const estep::ImplicitParameters p = estep::parse_implicit_parameters(prm);
+    prm.leave_subsection();
     EXPECT_EQ(p.maximum_bdf_order, 3u);
     EXPECT_EQ(p.linear_solver, estep::ImplicitLinearSolver::cg_amg);
     EXPECT_EQ(p.newton_tolerance, 1e-9);
@@ -92,6 +111,39 @@ namespace
         EXPECT_GT(estep_test::counter(run.counters, "newton iterations"), 0u);
         EXPECT_GT(estep_test::counter(run.counters, "jacobian setups"), 0u);
       }
+  }
+
+  TEST(CreateImplicitIntegrator, WarnsOfTheEntriesItDoesNotRead)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm,
+          "subsection Implicit integrators\n"
+          "  set ARKode order = 4\n"
+          "  set Minimum step = 1e-9\n"
+          "  set Linear tolerance = 1e-8\n"
+          "end\n");
+    const std::string section = "Time integration/Implicit integrators/";
+    EXPECT_EQ(
+      create("ida bdf", prm, tiny_cube(), 0.1)->warnings(),
+      (std::vector<std::string>{
+        section + "ARKode order: Time integration/Method = ida bdf does not "
+                  "read it (arkode irk does); it is ignored.",
+        section + "Linear tolerance: " + section +
+          "Linear solver = direct does not read it (cg amg does); it is "
+          "ignored."}));
+    // arkode irk reads the first two; energy momentum neither.
+    EXPECT_EQ(create("arkode irk", prm, tiny_cube(), 0.1)->warnings().size(),
+              1u);
+    EXPECT_EQ(
+      create("energy momentum", prm, tiny_cube(), 0.1)->warnings().size(), 3u);
+    // CG reads the linear tolerance.
+    prm.enter_subsection("Time integration");
+    prm.enter_subsection("Implicit integrators");
+    prm.set("Linear solver", "cg amg");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    EXPECT_TRUE(
+      create("arkode irk", prm, tiny_cube(), 0.1)->warnings().empty());
   }
 
   TEST(CreateImplicitIntegrator, ClearErrors)

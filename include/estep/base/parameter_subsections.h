@@ -53,25 +53,27 @@ namespace estep
                              const std::vector<PluginDeclaration> &plugins,
                              const std::vector<std::string>       &chosen);
 
-  /** The entries of a subsection that only some values of its entry
-   * `Type` read, each with those values. */
+  /** The entries of a subsection that only some values of the entry that
+   * chooses among them (its `Type`, say) read, each with those values. */
   using TypeReaders =
     std::vector<std::pair<std::string, std::vector<std::string>>>;
 
-  /** A subsection (its '/'-separated path) and its TypeReaders. */
+  /** A subsection (its '/'-separated path), its TypeReaders, and the
+   * '/'-separated path of the entry that chooses (empty: path/Type). */
   struct TypedSubsection
   {
     std::string path;
     TypeReaders readers;
+    std::string choice = "";
   };
 
   /**
-   * Warnings for the entries that the `Type` of their subsection does not
+   * Warnings for the entries that the choice of their subsection does not
    * read: in each of @p subsections, each entry of its readers whose value
-   * differs, blanks aside, from its declared default while `Type` has
-   * another value, in a sentence "path/entry: path/Type = value does not
-   * read it (box does); it is ignored." An entry the subsection does not
-   * declare is skipped.
+   * differs, blanks aside, from its declared default while the choosing
+   * entry has another value, in a sentence "path/entry: path/Type = value
+   * does not read it (box does); it is ignored." An entry the subsection
+   * does not declare is skipped.
    */
   std::vector<std::string>
   entries_unread_by_type(const dealii::ParameterHandler     &prm,

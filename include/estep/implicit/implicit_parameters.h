@@ -2,6 +2,7 @@
 #define estep_implicit_implicit_parameters_h
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -61,6 +62,11 @@ namespace estep
     /** Maximum CG iterations per linear solve (cg amg only). */
     unsigned int maximum_linear_iterations = 1000;
 
+    /** The entries of the subsection that the chosen method or linear
+     * solver does not read but the input changed from their defaults, as
+     * warnings (entries_unread_by_type()). */
+    std::vector<std::string> unread_entries;
+
     /** Check the settings across entries; throws std::invalid_argument with a
      * clear message. */
     void
@@ -82,7 +88,8 @@ namespace estep
 
   /**
    * Read the subsection "Implicit integrators" of @p prm (declared by
-   * declare_implicit_parameters(), at the current level of @p prm), checked.
+   * declare_implicit_parameters(), at the current level of @p prm, that of
+   * the entry `Method`), checked, with the entries the method does not read.
    */
   ImplicitParameters
   parse_implicit_parameters(const dealii::ParameterHandler &prm);
