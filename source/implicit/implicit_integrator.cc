@@ -11,6 +11,7 @@ namespace estep
     , settings(parameters)
   {
     settings.check();
+    record_unread_settings(settings.unread_entries);
     if (!system.has_hessian())
       throw std::invalid_argument(
         "Time integration/Method: the implicit integrators need the Hessian "
@@ -24,14 +25,6 @@ namespace estep
   ImplicitIntegrator::parameters() const
   {
     return settings;
-  }
-
-
-
-  std::vector<std::string>
-  ImplicitIntegrator::warnings() const
-  {
-    return settings.unread_entries;
   }
 
 

@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/base/parallel_blocks.h>
+#include <estep/base/parameter_subsections.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/integrator_registry.h>
 
@@ -455,7 +456,7 @@ namespace estep
   std::vector<std::string>
   EnergyStepping::warnings() const
   {
-    std::vector<std::string> found;
+    std::vector<std::string> found = TimeIntegrator::warnings();
     if (h > energy_scale)
       {
         std::ostringstream text;
@@ -544,22 +545,22 @@ namespace estep
         "Samples per window",
         std::to_string(sampling.samples_per_window),
         dealii::Patterns::Integer(1, 1000000),
-        "Sampled search only (set with the certified search, an error): "
-        "samples of V per search window.");
+        "Sampled search only (a warning otherwise): samples of V per "
+        "search window.");
       prm.declare_entry(
         "Bisection steps",
         std::to_string(sampling.bisection_steps),
         dealii::Patterns::Integer(1, 1000),
-        "Sampled search only (set with the certified search, an error): "
-        "the most bisections locating a bracketed "
+        "Sampled search only (a warning otherwise): the most bisections "
+        "locating a bracketed "
         "crossing (fewer once the bracket reaches the round-off of the "
         "time).");
       prm.declare_entry(
         "Audit sampled search",
         "false",
         dealii::Patterns::Bool(),
-        "Sampled search only (set with the certified search, an error): "
-        "search every flight with the certified search "
+        "Sampled search only (an error otherwise): search every flight "
+        "with the certified search "
         "too and count in summary.json the crossings the sampled search "
         "stepped over (crossings stepped over (audit)); the run follows the "
         "sampled answers. Costs about one certified search per step more.");
@@ -585,24 +586,18 @@ namespace estep
       if (!(c < 1.))
         throw std::runtime_error("Time integration/Energy stepping/Terrace "
                                  "offset: must be smaller than 1.");
-      // No setting of the sampled search may be silently ignored.
-      const SamplingSettings defaults;
-      const auto             only_sampled = [](const std::string &entry) {
-        return std::runtime_error(
-          "Time integration/Energy stepping/" + entry +
-          ": only Crossing search = sampled uses it (Crossing search = "
-                      "certified).");
-      };
-      if (!sampled &&
-          sampling.samples_per_window != defaults.samples_per_window)
-        throw only_sampled("Samples per window");
-      if (!sampled && sampling.bisection_steps != defaults.bisection_steps)
-        throw only_sampled("Bisection steps");
       if (audit && !sampled)
         throw std::runtime_error(
           "Time integration/Energy stepping/Audit sampled search: audits the "
           "sampled search; set Crossing search = sampled.");
       auto integrator = std::make_unique<EnergyStepping>(system, h, c);
+      const std::string section = "Time integration/Energy stepping";
+      integrator->record_unread_settings(
+        entries_unread_by_type(prm,
+                               {{section,
+                                 {{"Samples per window", {"sampled"}},
+                                  {"Bisection steps", {"sampled"}}},
+                                 section + "/Crossing search"}}));
       if (sampled)
         integrator->use_sampled_search(sampling, audit);
       return integrator;

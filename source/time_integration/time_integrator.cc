@@ -83,7 +83,15 @@ namespace estep
   std::vector<std::string>
   TimeIntegrator::warnings() const
   {
-    return {};
+    return unread_settings;
+  }
+
+
+
+  void
+  TimeIntegrator::record_unread_settings(std::vector<std::string> sentences)
+  {
+    unread_settings = std::move(sentences);
   }
 
 

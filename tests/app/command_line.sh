@@ -147,11 +147,14 @@ printf 'set Output directory = run\nsubsection Time integraton\n  set End time =
 expect 1 "Line <2> of file <section.prm>: There is no such subsection to be entered: Time integraton$" -- section.prm
 printf 'set Output directory = run\nsubsection Time integration\n  subsection Energy stepping\n    set Energy step = -1\n  end\nend\n' > pattern.prm
 expect 1 "Line <4> of file <pattern.prm>.*Energy step" -- pattern.prm
-# A setting of the sampled search in a certified run is refused, not ignored.
-expect 1 "Time integration/Energy stepping/Samples per window: only Crossing search = sampled uses it" -- run.prm -s "Time integration/Energy stepping/Samples per window=16"
-expect 1 "Time integration/Energy stepping/Bisection steps: only Crossing search = sampled uses it" -- run.prm -s "Time integration/Energy stepping/Bisection steps=30"
+# A setting of the sampled search in a certified run is a warning, not ignored silently (a
+# comparison switches Crossing search with --set); the audit of a search not run is an error.
+expect 0 "warning: Time integration/Energy stepping/Samples per window: Time integration/Energy stepping/Crossing search = certified does not read it \(sampled does\); it is ignored\." -- run.prm -s "Output directory=unsampled" -s "Time integration/Energy stepping/Samples per window=16"
+expect 0 "warning: Time integration/Energy stepping/Bisection steps: Time integration/Energy stepping/Crossing search = certified does not read it" -- run.prm -s "Output directory=unsampled" -s "Time integration/Energy stepping/Bisection steps=30"
+grep -q "Bisection steps: Time integration/Energy stepping/Crossing search = certified does not read it" unsampled/summary.json || fail "the unread Bisection steps are not among summary.json's warnings"
 expect 1 "Time integration/Energy stepping/Audit sampled search: audits the sampled search" -- run.prm -s "Time integration/Energy stepping/Audit sampled search=true"
 expect 0 "completed" -- run.prm -s "Output directory=sampled" -s "Time integration/Energy stepping/Crossing search=sampled" -s "Time integration/Energy stepping/Samples per window=16"
+grep -q "Samples per window" err.txt && fail "a sampled run warns of its own Samples per window: $(cat err.txt)"
 # The same in JSON: the file and the entry's full path.
 printf '{\n  "Output directory": "run",\n  "Time integration": {\n    "Energy stepping": { "Energy stepp": "1" }\n  }\n}\n' > unknown.json
 expect 1 "^estep: error: File <unknown.json>: there is no entry <Time integration/Energy stepping/Energy stepp>" -- unknown.json

@@ -48,11 +48,6 @@ namespace estep
     const ImplicitParameters &
     parameters() const;
 
-    /** The entries of the subsection "Implicit integrators" that this
-     * method does not read but the input changed (parameters()). */
-    std::vector<std::string>
-    warnings() const override;
-
     /** Also the state at the start of the last step and the work counters.
      */
     void

@@ -90,10 +90,15 @@ namespace estep
     /**
      * Warnings about the run as initialised (e.g. an energy step coarser than
      * the system's energy scale), one sentence each, for the application to
-     * print. The default has none.
+     * print. The default: the unread settings, as recorded.
      */
     virtual std::vector<std::string>
     warnings() const;
+
+    /** Record the settings of the input that this integrator does not read
+     * (entries_unread_by_type()), one sentence each, for warnings(). */
+    void
+    record_unread_settings(std::vector<std::string> sentences);
 
     /**
      * @name Checkpoints
@@ -195,6 +200,9 @@ namespace estep
     std::uint64_t           steps         = 0;
     double                  smallest_step = 0.;
     double                  largest_step  = 0.;
+
+  private:
+    std::vector<std::string> unread_settings;
   };
 
   /**
