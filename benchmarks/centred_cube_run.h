@@ -1,14 +1,23 @@
 // What the parallel benchmarks share: energy-stepping (h = 1e-5) of the
-// spinning cube of the reference text rotating about its centre, timed, and
-// the comparison of two final states to the last bit.
+// spinning cube of the reference text rotating about its centre (or of a
+// ball of its material), timed, and the comparison of two final states to
+// the last bit.
 #ifndef estep_benchmarks_centred_cube_run_h
 #define estep_benchmarks_centred_cube_run_h
 
+#include <deal.II/grid/tria.h>
+
+#include <estep/fem/ball_mesh.h>
 #include <estep/fem/elastic_body.h>
+#include <estep/fem/meshes.h>
+#include <estep/materials/neo_hookean.h>
 #include <estep/time_integration/energy_stepping.h>
 
+#include <array>
 #include <chrono>
 #include <cstring>
+#include <memory>
+#include <string>
 
 namespace benchmark_cube
 {
@@ -20,16 +29,18 @@ namespace benchmark_cube
     estep::Vector q, v;
   };
 
-  /** Energy-stepping of @p body from the centred rotation to @p end_time or
-   * @p max_steps steps, whichever comes first. */
+  /** Energy-stepping of @p body from the rotation about the z axis through
+   * @p centre (the cube's centre by default) at unit angular velocity to
+   * @p end_time or @p max_steps steps, whichever comes first. */
   inline Run
-  run(const estep::ElasticBody &body,
-      const double              end_time,
-      const unsigned int        max_steps)
+  run(const estep::ElasticBody    &body,
+      const double                 end_time,
+      const unsigned int           max_steps,
+      const std::array<double, 3> &centre = {{0.5, 0.5, 0.5}})
   {
     const estep::Vector q = body.reference_configuration();
     const estep::Vector v =
-      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, {{0.5, 0.5, 0.5}});
+      body.rigid_velocity(q, {{0., 0., 0.}}, {{0., 0., 1.}}, centre);
     estep::EnergyStepping stepping(body, 1e-5);
     stepping.initialize(0., q, v);
     const auto start = std::chrono::steady_clock::now();
@@ -43,6 +54,25 @@ namespace benchmark_cube
             stepping.time(),
             stepping.position(),
             stepping.velocity()};
+  }
+
+  /** The neo-Hookean body of the reference text's cube on @p tria. */
+  inline estep::ElasticBody
+  body_on(const dealii::Triangulation<3> &tria, const std::string &name)
+  {
+    return estep::ElasticBody(
+      tria, std::make_shared<estep::NeoHookean>(0.0100, 0.0066), 0.100, name);
+  }
+
+  /** A unit ball of gmsh (mesh size 0.05: 152,424 cells), its cells in
+   * gmsh's order in @p trias[0] and along the Hilbert curve of the mesh
+   * factory in @p trias[1] (both empty before). */
+  inline void
+  make_ball_in_two_orders(std::array<dealii::Triangulation<3>, 2> &trias)
+  {
+    estep::make_ball_mesh(trias[0], 0.05);
+    trias[1].copy_triangulation(trias[0]);
+    estep::order_cells_along_hilbert_curve(trias[1]);
   }
 
   /** Whether two runs ended in the same state, to the last bit. */

@@ -4,7 +4,13 @@
 // program, each three times in turn (the fastest of the three counts). Printed
 // per size: the steps, the wall time per step and per step
 // and cell on each thread count, their ratio (the speedup), and whether the
-// two runs ended in the same state to the last bit.
+// two runs ended in the same state to the last bit. Then the same for a
+// ball meshed by gmsh (mesh size 0.05, 152,424 cells, spinning about its
+// centre, 40 steps) with its cells in gmsh's order and along the Hilbert
+// curve of the mesh factory (order_cells_along_hilbert_curve()), with the
+// ratios of the two orders' times on 1 and on N threads, and the cells each
+// of 2 MPI ranks would hold (and compute the gradient of) relative to its
+// own (chunks_held_by_ranks()).
 //
 // Usage: build/benchmarks/benchmark_fem_threads [threads, default: all cores]
 //        [largest subdivision, default 32] [end time of the 98,304-cell
@@ -12,10 +18,10 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/parallel_blocks.h>
-#include <estep/fem/elastic_body.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/meshes.h>
-#include <estep/materials/neo_hookean.h>
 
 #include "centred_cube_run.h"
 
@@ -26,17 +32,42 @@
 
 namespace
 {
+  using benchmark_cube::body_on;
   using benchmark_cube::Run;
 
   /** The run of benchmark_cube::run() on @p threads threads. */
   Run
-  run(const estep::ElasticBody &body,
-      const unsigned int        threads,
-      const double              end_time,
-      const unsigned int        max_steps)
+  run(const estep::ElasticBody    &body,
+      const unsigned int           threads,
+      const double                 end_time,
+      const unsigned int           max_steps,
+      const std::array<double, 3> &centre = {{0.5, 0.5, 0.5}})
   {
     estep::set_thread_count(threads);
-    return benchmark_cube::run(body, end_time, max_steps);
+    return benchmark_cube::run(body, end_time, max_steps, centre);
+  }
+
+  /** The fastest of three runs of @p body on 1 and on @p threads threads,
+   * in turn. */
+  std::pair<Run, Run>
+  serial_and_parallel(const estep::ElasticBody    &body,
+                      const unsigned int           threads,
+                      const double                 end_time,
+                      const unsigned int           max_steps,
+                      const std::array<double, 3> &centre = {{0.5, 0.5, 0.5}})
+  {
+    Run serial   = run(body, 1, end_time, max_steps, centre);
+    Run parallel = run(body, threads, end_time, max_steps, centre);
+    for (unsigned int repetition = 1; repetition < 3; ++repetition)
+      {
+        serial.seconds =
+          std::min(serial.seconds,
+                   run(body, 1, end_time, max_steps, centre).seconds);
+        parallel.seconds =
+          std::min(parallel.seconds,
+                   run(body, threads, end_time, max_steps, centre).seconds);
+      }
+    return {serial, parallel};
   }
 } // namespace
 
@@ -64,23 +95,11 @@ main(int argc, char **argv)
     {
       dealii::Triangulation<3> tria;
       estep::make_seed_cube_mesh(tria, n);
-      const estep::ElasticBody body(tria,
-                                    std::make_shared<estep::NeoHookean>(0.0100,
-                                                                        0.0066),
-                                    0.100,
-                                    "cube");
+      const estep::ElasticBody body = body_on(tria, "cube");
       // To the end time, the largest cube (786,432 cells) for 40 steps.
       const unsigned int max_steps = n > 16 ? 40 : 1000000;
-      Run                serial    = run(body, 1, end_time, max_steps);
-      Run                parallel  = run(body, threads, end_time, max_steps);
-      for (unsigned int repetition = 1; repetition < 3; ++repetition)
-        {
-          serial.seconds =
-            std::min(serial.seconds, run(body, 1, end_time, max_steps).seconds);
-          parallel.seconds =
-            std::min(parallel.seconds,
-                     run(body, threads, end_time, max_steps).seconds);
-        }
+      const auto [serial, parallel] =
+        serial_and_parallel(body, threads, end_time, max_steps);
       const double cells = body.n_cells();
       std::printf("%9.0f %6u %7.3g %13.3e %13.3e %15.1f %15.1f %8.2f %9s\n",
                   cells,
@@ -93,5 +112,53 @@ main(int argc, char **argv)
                   serial.seconds / parallel.seconds,
                   benchmark_cube::same_end(serial, parallel) ? "yes" : "NO");
     }
+
+  std::printf("\nthe same, 40 steps of a ball of gmsh (mesh size 0.05) "
+              "spinning about its centre, in two orders of its cells\n");
+  std::printf("%-14s %9s %13s %13s %8s %9s %17s\n",
+              "cell order",
+              "cells",
+              "1: s/step",
+              "N: s/step",
+              "speedup",
+              "same bits",
+              "held of 2 ranks");
+  std::array<dealii::Triangulation<3>, 2> balls;
+  benchmark_cube::make_ball_in_two_orders(balls);
+  std::array<double, 2> serial_seconds{}, parallel_seconds{};
+  for (const unsigned int k : {0u, 1u})
+    {
+      const estep::ElasticBody body = body_on(balls[k], "ball");
+      const auto [serial, parallel] =
+        serial_and_parallel(body, threads, 1e9, 40, {{0., 0., 0.}});
+      serial_seconds[k]   = serial.seconds;
+      parallel_seconds[k] = parallel.seconds;
+      // The cells each of 2 ranks holds (and computes the gradient of),
+      // relative to its own.
+      const estep::P1CellData &data = body.cell_data();
+      const auto               held = estep::chunks_held_by_ranks(data, 2);
+      std::array<double, 2>    ratio{};
+      for (const unsigned int r : {0u, 1u})
+        {
+          const estep::BlockRange own =
+            estep::rank_cells(data.n_padded_cells(), r, 2);
+          for (const unsigned int c : held[r])
+            ratio[r] += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+          ratio[r] /= own.end - own.begin;
+        }
+      std::printf("%-14s %9u %13.3e %13.3e %8.2f %9s %8.2f %8.2f\n",
+                  k == 0 ? "gmsh's" : "Hilbert curve",
+                  body.n_cells(),
+                  serial.seconds / serial.steps,
+                  parallel.seconds / parallel.steps,
+                  serial.seconds / parallel.seconds,
+                  benchmark_cube::same_end(serial, parallel) ? "yes" : "NO",
+                  ratio[0],
+                  ratio[1]);
+    }
+  std::printf("time in gmsh's order / along the curve: %.2f on 1 thread, "
+              "%.2f on N\n",
+              serial_seconds[0] / serial_seconds[1],
+              parallel_seconds[0] / parallel_seconds[1]);
   return 0;
 }

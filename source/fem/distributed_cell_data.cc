@@ -12,30 +12,30 @@
 
 namespace estep
 {
-  std::vector<BlockRange>
-  cells_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
+  std::vector<std::vector<unsigned int>>
+  chunks_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
   {
-    Assert(data.held_begin == 0 && data.held_end() == data.n_padded_cells(),
+    Assert(data.held_chunks().size() == data.n_chunks(),
            dealii::ExcInternalError());
-    const unsigned int      n_padded = data.n_padded_cells();
-    std::vector<BlockRange> held(n_ranks);
-    for (unsigned int r = 0; r < n_ranks; ++r)
-      held[r] = rank_cells(n_padded, r, n_ranks);
+    const unsigned int              n_padded = data.n_padded_cells();
     const std::vector<unsigned int> block_rank =
       block_ranks(n_blocks(n_padded), n_ranks);
-    constexpr unsigned int chunk = P1CellData::gradient_chunk;
+    std::vector<std::vector<bool>> held(n_ranks,
+                                        std::vector<bool>(data.n_chunks()));
+    constexpr unsigned int         chunk = P1CellData::gradient_chunk;
     for (unsigned int e = 0; e < n_padded; ++e)
       {
-        const unsigned int chunk_end =
-          std::min((e / chunk + 1) * chunk, n_padded);
+        held[block_rank[e / block_size]][e / chunk] = true;
         for (unsigned int a = 0; a < 4; ++a)
-          {
-            BlockRange &range =
-              held[block_rank[data.first_cell[data.point[a][e]] / block_size]];
-            range.end = std::max(range.end, chunk_end);
-          }
+          held[block_rank[data.first_cell[data.point[a][e]] / block_size]]
+              [e / chunk] = true;
       }
-    return held;
+    std::vector<std::vector<unsigned int>> chunks(n_ranks);
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      for (unsigned int c = 0; c < data.n_chunks(); ++c)
+        if (held[r][c])
+          chunks[r].push_back(c);
+    return chunks;
   }
 
 
@@ -97,31 +97,39 @@ namespace estep
     broadcast_from_first_rank(data.boundary_triangle);
     broadcast_from_first_rank(data.boundary_id);
 
-    // The cells: to each rank those it holds, one rank after the other.
+    // The cells: to each rank the chunks it holds, one rank after the other.
     if (this_rank() == 0)
       {
-        const std::vector<BlockRange> held =
-          cells_held_by_ranks(data, rank_count());
+        const std::vector<std::vector<unsigned int>> held =
+          chunks_held_by_ranks(data, rank_count());
+        const auto part_of = [&](const auto &v, const unsigned int r) {
+          std::decay_t<decltype(v)> part;
+          for (const unsigned int c : held[r])
+            {
+              const BlockRange cells = data.chunk_cells(c);
+              part.insert(part.end(),
+                          v.begin() + cells.begin,
+                          v.begin() + cells.end);
+            }
+          return part;
+        };
         for (unsigned int r = 1; r < held.size(); ++r)
           {
-            send_bytes_from_first_rank(r, &held[r].begin, sizeof(unsigned int));
+            send_from_first_rank(r, held[r].data(), held[r].size());
             data.for_each_cell_array([&](const auto &v) {
-              send_from_first_rank(r,
-                                   v.data() + held[r].begin,
-                                   held[r].end - held[r].begin);
+              const auto part = part_of(v, r);
+              send_from_first_rank(r, part.data(), part.size());
             });
           }
-        data.for_each_cell_array([&](auto &v) {
-          std::decay_t<decltype(v)>(v.begin() + held[0].begin,
-                                    v.begin() + held[0].end)
-            .swap(v);
-        });
-        data.held_begin = held[0].begin;
+        data.for_each_cell_array([&](auto &v) { part_of(v, 0).swap(v); });
+        data.hold_chunks(held[0]);
       }
     else
       {
-        receive_bytes_from_first_rank(&data.held_begin, sizeof(unsigned int));
+        std::vector<unsigned int> chunks;
+        receive_from_first_rank(chunks);
         data.for_each_cell_array([](auto &v) { receive_from_first_rank(v); });
+        data.hold_chunks(chunks);
       }
     return data;
   }
@@ -135,24 +143,24 @@ namespace estep
       return data;
     const unsigned int n_padded = data.n_padded_cells();
     const BlockRange   mine     = rank_cells(n_padded, this_rank());
-    Assert(data.held_begin <= mine.begin && mine.end <= data.held_end(),
-           dealii::ExcInternalError());
+    Assert(data.holds(mine), dealii::ExcInternalError());
     // Each rank's cells, in whole blocks of block_size cells (the last one
     // cut to n_padded after the exchange).
     P1CellData every = data;
-    every.held_begin = 0;
     every.for_each_cell_array([&](auto &whole) {
       using T = typename std::decay_t<decltype(whole)>::value_type;
       const std::vector<T> held = std::move(whole);
       whole.assign(std::size_t(n_blocks(n_padded)) * block_size, T());
-      std::copy(held.begin() + data.at(mine.begin),
-                held.begin() + data.at(mine.end),
-                whole.begin() + mine.begin);
+      if (mine.begin < mine.end)
+        std::copy(held.begin() + data.at(mine.begin),
+                  held.begin() + data.at(mine.begin) + (mine.end - mine.begin),
+                  whole.begin() + mine.begin);
       share_block_items(whole.data(),
                         block_size * sizeof(T),
                         n_blocks(n_padded));
       whole.resize(n_padded);
     });
+    every.hold_every_chunk();
     return every;
   }
 } // namespace estep

@@ -37,13 +37,15 @@ namespace estep
                   std::to_string(data.density) + ")."));
     // The per-cell arrays must hold at least this rank's cells (all of them
     // on one rank).
-    const unsigned int n_padded = data.n_padded_cells();
-    const unsigned int n_held   = data.volume.size();
-    const BlockRange   mine     = rank_cells(n_padded, this_rank());
-    bool complete = data.n_cells > 0 && data.held_begin % n_lanes == 0 &&
-                    n_held % n_lanes == 0 && data.held_end() <= n_padded &&
-                    data.held_begin <= mine.begin &&
-                    mine.end <= data.held_end() &&
+    const unsigned int n_padded    = data.n_padded_cells();
+    const unsigned int n_held      = data.volume.size();
+    const BlockRange   mine        = rank_cells(n_padded, this_rank());
+    unsigned int       n_in_chunks = 0;
+    for (const unsigned int c : data.held_chunks())
+      n_in_chunks += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+    bool complete = data.n_cells > 0 &&
+                    data.chunk_start.size() == data.n_chunks() &&
+                    n_held == n_in_chunks && data.holds(mine) &&
                     data.reference_position.size() == 3 * data.n_points &&
                     data.lumped_mass.size() == data.n_points &&
                     data.first_cell.size() == data.n_points &&
@@ -323,17 +325,16 @@ namespace estep
 
     // The chunks of cells with a vertex among a part's points, in runs of at
     // most block_size cells, and the range of the points they touch. All of
-    // them lie among the cells this rank holds (cells_held_by_ranks()).
+    // them lie among the cells this rank holds (chunks_held_by_ranks()).
     for (unsigned int j = 0; j < n_parts; ++j)
       {
         Part &part  = parts[j];
         part.lowest = data.n_points;
-        for (unsigned int chunk = data.held_begin; chunk < data.held_end();
-             chunk += gradient_chunk)
+        for (const unsigned int c : data.held_chunks())
           {
-            const unsigned int end =
-              std::min(chunk + gradient_chunk, data.held_end());
-            bool needed = false;
+            const unsigned int chunk  = data.chunk_cells(c).begin;
+            const unsigned int end    = data.chunk_cells(c).end;
+            bool               needed = false;
             for (unsigned int e = chunk; e < end && !needed; ++e)
               for (unsigned int a = 0; a < 4; ++a)
                 {
@@ -487,7 +488,7 @@ namespace estep
   {
     Assert(cells.begin <= cells.end && cells.end <= data.n_cells,
            dealii::ExcInternalError());
-    if (data.held_begin <= cells.begin && cells.end <= data.held_end())
+    if (data.holds(cells))
       return data;
     AssertThrow(gathered_cells != nullptr,
                 dealii::ExcMessage("ElasticBody: cells this rank does not "

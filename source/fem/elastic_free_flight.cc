@@ -625,9 +625,10 @@ namespace estep
     // block's earliest so far), then the earliest of the blocks.
     const std::vector<double> first = distributed_block_terms<double>(
       n_blocks(n_cells), [&](const unsigned int b) {
-        const BlockRange cells = block_range(b, n_cells);
-        double           best  = infinity;
-        for (unsigned int h = at(cells.begin); h < at(cells.end); ++h)
+        const BlockRange   cells = block_range(b, n_cells);
+        double             best  = infinity;
+        const unsigned int begin = at(cells.begin);
+        for (unsigned int h = begin; h < begin + (cells.end - cells.begin); ++h)
           {
             if (!(c0[h] >
                   cubic_rounding * cubic_scale(c0[h], c1[h], c2[h], c3[h], 0.)))

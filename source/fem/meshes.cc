@@ -1,14 +1,20 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/reference_cell.h>
 #include <deal.II/grid/tria.h>
 
 #include <estep/fem/meshes.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <map>
+#include <numeric>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace estep
@@ -221,5 +227,39 @@ namespace estep
           }
       }
     check_cells_are_distinct_and_faces_shared_by_two(tria);
+  }
+
+  void
+  order_cells_along_hilbert_curve(dealii::Triangulation<3, 3> &tria)
+  {
+    AssertThrow(tria.n_levels() == 1,
+                dealii::ExcMessage("order_cells_along_hilbert_curve: the mesh "
+                                   "must not be refined."));
+    auto [vertices, cells, faces_and_edges] =
+      dealii::GridTools::get_coarse_mesh_description(tria);
+    std::vector<dealii::Point<3>> centroids;
+    centroids.reserve(cells.size());
+    for (const dealii::CellData<3> &cell : cells)
+      {
+        dealii::Point<3> sum;
+        for (const unsigned int v : cell.vertices)
+          sum += vertices[v];
+        centroids.push_back(sum / double(cell.vertices.size()));
+      }
+    const std::vector<std::array<std::uint64_t, 3>> curve =
+      dealii::Utilities::inverse_Hilbert_space_filling_curve(centroids);
+    std::vector<unsigned int> order(cells.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(),
+                     order.end(),
+                     [&](const unsigned int a, const unsigned int b) {
+                       return curve[a] < curve[b];
+                     });
+    std::vector<dealii::CellData<3>> ordered;
+    ordered.reserve(cells.size());
+    for (const unsigned int e : order)
+      ordered.push_back(cells[e]);
+    tria.clear();
+    tria.create_triangulation(vertices, ordered, faces_and_edges);
   }
 } // namespace estep

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 namespace estep
@@ -190,6 +191,58 @@ namespace estep
       }
 
     add_boundary_faces(tria, point_of_vertex, data);
+    data.hold_every_chunk();
     return data;
+  }
+
+
+
+  void
+  P1CellData::hold_chunks(const std::vector<unsigned int> &chunks)
+  {
+    chunk_start.assign(n_chunks(), not_held);
+    unsigned int position = 0;
+    for (const unsigned int c : chunks)
+      {
+        AssertIndexRange(c, n_chunks());
+        Assert(chunk_start[c] == not_held, dealii::ExcInternalError());
+        chunk_start[c]         = position;
+        const BlockRange cells = chunk_cells(c);
+        position += cells.end - cells.begin;
+      }
+  }
+
+  void
+  P1CellData::hold_every_chunk()
+  {
+    std::vector<unsigned int> every_chunk(n_chunks());
+    std::iota(every_chunk.begin(), every_chunk.end(), 0u);
+    hold_chunks(every_chunk);
+  }
+
+  std::vector<unsigned int>
+  P1CellData::held_chunks() const
+  {
+    std::vector<unsigned int> chunks;
+    for (unsigned int c = 0; c < chunk_start.size(); ++c)
+      if (chunk_start[c] != not_held)
+        chunks.push_back(c);
+    return chunks;
+  }
+
+  bool
+  P1CellData::holds(const BlockRange cells) const
+  {
+    if (cells.begin >= cells.end)
+      return true;
+    if (cells.end > n_padded_cells() || chunk_start.size() != n_chunks())
+      return false;
+    const unsigned int first = cells.begin / gradient_chunk;
+    const unsigned int last  = (cells.end - 1) / gradient_chunk;
+    for (unsigned int c = first; c <= last; ++c)
+      if (chunk_start[c] == not_held ||
+          chunk_start[c] != chunk_start[first] + (c - first) * gradient_chunk)
+        return false;
+    return true;
   }
 } // namespace estep

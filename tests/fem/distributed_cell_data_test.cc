@@ -3,70 +3,92 @@
 // seed cube, for 1, 2, 3, 5, 12 and 13 ranks); on one process, every cell's
 // data is the data itself.
 
+#include <deal.II/grid/tria.h>
+
 #include <estep/base/distributed_blocks.h>
 #include <estep/fem/distributed_cell_data.h>
+#include <estep/fem/mesh_description.h>
+#include <estep/fem/p1_cell_data.h>
 
 #include <gtest/gtest.h>
 
 #include "test_bodies.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace
 {
   using estep::block_size;
   using estep::BlockRange;
 
-  TEST(CellsHeldByRanks, ItsBlocksAndExactlyTheChunksItsPointsNeed)
+  /** What each of @p n_ranks ranks must hold, by brute force: the chunks of
+   * its blocks, and the chunk of every cell that touches a point whose first
+   * cell (recomputed here) lies in its blocks. */
+  std::vector<std::vector<unsigned int>>
+  chunks_needed(const estep::P1CellData &data, const unsigned int n_ranks)
   {
-    const estep::P1CellData &data     = estep_test::seed_cube().cell_data();
-    const unsigned int       n_padded = data.n_padded_cells();
-    const unsigned int       n_blocks = estep::n_blocks(n_padded);
-    ASSERT_EQ(n_blocks, 12u);
-    constexpr unsigned int chunk = estep::P1CellData::gradient_chunk;
-    // Each point's first cell, by brute force.
+    const unsigned int        n_padded = data.n_padded_cells();
+    const unsigned int        n_blocks = estep::n_blocks(n_padded);
+    constexpr unsigned int    chunk    = estep::P1CellData::gradient_chunk;
     std::vector<unsigned int> first_cell(data.n_points, n_padded);
     for (unsigned int e = 0; e < n_padded; ++e)
       for (unsigned int a = 0; a < 4; ++a)
         first_cell[data.point[a][e]] =
           std::min(first_cell[data.point[a][e]], e);
     EXPECT_EQ(data.first_cell, first_cell);
+    std::vector<unsigned int> block_rank(n_blocks);
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      {
+        const BlockRange blocks = estep::rank_blocks(n_blocks, r, n_ranks);
+        for (unsigned int b = blocks.begin; b < blocks.end; ++b)
+          block_rank[b] = r;
+      }
+    std::vector<std::vector<unsigned int>> needed(n_ranks);
+    const auto need = [&](const unsigned int r, const unsigned int c) {
+      if (std::find(needed[r].begin(), needed[r].end(), c) == needed[r].end())
+        needed[r].push_back(c);
+    };
+    for (unsigned int e = 0; e < n_padded; ++e)
+      {
+        need(block_rank[e / block_size], e / chunk);
+        for (unsigned int a = 0; a < 4; ++a)
+          need(block_rank[first_cell[data.point[a][e]] / block_size],
+               e / chunk);
+      }
+    for (auto &chunks : needed)
+      std::sort(chunks.begin(), chunks.end());
+    return needed;
+  }
+
+  /** The number of cells in @p chunks of @p data. */
+  unsigned int
+  cells_in(const estep::P1CellData         &data,
+           const std::vector<unsigned int> &chunks)
+  {
+    unsigned int n = 0;
+    for (const unsigned int c : chunks)
+      n += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+    return n;
+  }
+
+  TEST(ChunksHeldByRanks, ItsBlocksAndExactlyTheChunksItsPointsNeed)
+  {
+    const estep::P1CellData &data     = estep_test::seed_cube().cell_data();
+    const unsigned int       n_padded = data.n_padded_cells();
+    const unsigned int       n_blocks = estep::n_blocks(n_padded);
+    ASSERT_EQ(n_blocks, 12u);
+    EXPECT_EQ(data.held_chunks().size(), data.n_chunks());
     for (const unsigned int n_ranks : {1u, 2u, 3u, 5u, 12u, 13u})
       {
-        const std::vector<BlockRange> held =
-          estep::cells_held_by_ranks(data, n_ranks);
-        ASSERT_EQ(held.size(), n_ranks);
-        // What each rank must hold, by brute force: its blocks, and the chunk
-        // of every cell that touches one of its points.
-        std::vector<BlockRange>   needed(n_ranks);
-        std::vector<unsigned int> block_rank(n_blocks);
-        for (unsigned int r = 0; r < n_ranks; ++r)
-          {
-            const BlockRange blocks = estep::rank_blocks(n_blocks, r, n_ranks);
-            for (unsigned int b = blocks.begin; b < blocks.end; ++b)
-              block_rank[b] = r;
-            needed[r] = {std::min(blocks.begin * block_size, n_padded),
-                         std::min(blocks.end * block_size, n_padded)};
-          }
-        for (unsigned int e = 0; e < n_padded; ++e)
-          for (unsigned int a = 0; a < 4; ++a)
-            {
-              const unsigned int r =
-                block_rank[first_cell[data.point[a][e]] / block_size];
-              EXPECT_LE(needed[r].begin, e);
-              needed[r].end =
-                std::max(needed[r].end,
-                         std::min((e / chunk + 1) * chunk, n_padded));
-            }
+        const std::vector<std::vector<unsigned int>> held =
+          estep::chunks_held_by_ranks(data, n_ranks);
+        EXPECT_EQ(held, chunks_needed(data, n_ranks)) << n_ranks << " ranks";
         unsigned int total = 0, empty = 0;
-        for (unsigned int r = 0; r < n_ranks; ++r)
+        for (unsigned int r = 0; r < held.size(); ++r)
           {
-            EXPECT_EQ(held[r].begin, needed[r].begin)
-              << n_ranks << " ranks, rank " << r;
-            EXPECT_EQ(held[r].end, needed[r].end)
-              << n_ranks << " ranks, rank " << r;
-            total += held[r].end - held[r].begin;
-            empty += held[r].begin == held[r].end;
+            total += cells_in(data, held[r]);
+            empty += held[r].empty();
           }
         EXPECT_EQ(empty, n_ranks > n_blocks ? n_ranks - n_blocks : 0u);
         if (n_ranks == 1)
@@ -77,9 +99,41 @@ namespace
           {
             // The box is numbered layer by layer: each rank holds its half
             // and the first rank one layer of hexahedra more (1,536 cells).
-            EXPECT_EQ(held[0].end - held[0].begin, n_padded / 2 + n_padded / 8);
-            EXPECT_EQ(held[1].end - held[1].begin, n_padded / 2);
+            EXPECT_EQ(cells_in(data, held[0]), n_padded / 2 + n_padded / 8);
+            EXPECT_EQ(cells_in(data, held[1]), n_padded / 2);
           }
+      }
+  }
+
+  // gmsh numbers a ball's cells in no compact order: before make_mesh() put
+  // them in the order of a Hilbert curve, the first of 2 ranks held (and
+  // computed the gradient of) almost every cell of this ball, and of 4 ranks
+  // the first held them all. Along the curve, each rank holds its cells and
+  // a layer of the others'.
+  TEST(ChunksHeldByRanks, ABallOfGmshInCompactRuns)
+  {
+    estep::MeshDescription d;
+    d.type      = "ball";
+    d.mesh_size = 0.08;
+    dealii::Triangulation<3> tria;
+    estep::make_mesh(d, tria);
+    const estep::P1CellData data     = estep::make_p1_cell_data(tria, 1.);
+    const unsigned int      n_padded = data.n_padded_cells();
+    ASSERT_GT(estep::n_blocks(n_padded), 30u);
+    for (const unsigned int n_ranks : {2u, 4u})
+      {
+        const std::vector<std::vector<unsigned int>> held =
+          estep::chunks_held_by_ranks(data, n_ranks);
+        EXPECT_EQ(held, chunks_needed(data, n_ranks)) << n_ranks << " ranks";
+        unsigned int total = 0;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          {
+            const BlockRange own = estep::rank_cells(n_padded, r, n_ranks);
+            EXPECT_LT(cells_in(data, held[r]), 2 * (own.end - own.begin))
+              << n_ranks << " ranks, rank " << r;
+            total += cells_in(data, held[r]);
+          }
+        EXPECT_LT(total, 1.6 * n_padded) << n_ranks << " ranks";
       }
   }
 
@@ -87,7 +141,7 @@ namespace
   {
     const estep::P1CellData &data  = estep_test::seed_cube().cell_data();
     const estep::P1CellData  every = estep::gather_every_cell(data);
-    EXPECT_EQ(every.held_begin, 0u);
+    EXPECT_EQ(every.chunk_start, data.chunk_start);
     EXPECT_EQ(every.volume, data.volume);
     for (unsigned int a = 0; a < 4; ++a)
       EXPECT_EQ(every.point[a], data.point[a]);

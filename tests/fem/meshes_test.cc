@@ -1,6 +1,8 @@
 // Meshes: the cube of hexahedra split into 24 tetrahedra, deal.II generators,
-// gmsh files and the error messages for bad input.
+// gmsh files, the cells renumbered along a Hilbert curve and the error
+// messages for bad input.
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <estep/fem/mesh_description.h>
@@ -8,9 +10,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -72,6 +77,73 @@ namespace
       estep::make_mesh(d, tria);
       EXPECT_EQ(tria.n_active_cells(), 7u * 24u);
     }
+  }
+
+  /** Each cell's vertices (in its own order) and material id, or each
+   * boundary face's vertices (sorted) and boundary id, as numbers, sorted:
+   * the mesh whatever the order of its cells and vertices. */
+  std::vector<std::vector<double>>
+  cells_of(const dealii::Triangulation<3> &tria, const bool boundary)
+  {
+    std::vector<std::vector<double>> all;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (!boundary)
+        {
+          std::vector<double> numbers{double(cell->material_id())};
+          for (unsigned int v = 0; v < 4; ++v)
+            for (unsigned int c = 0; c < 3; ++c)
+              numbers.push_back(cell->vertex(v)[c]);
+          all.push_back(numbers);
+        }
+      else
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              std::vector<std::array<double, 3>> points;
+              for (unsigned int v = 0; v < 3; ++v)
+                points.push_back({{face->vertex(v)[0],
+                                   face->vertex(v)[1],
+                                   face->vertex(v)[2]}});
+              std::sort(points.begin(), points.end());
+              std::vector<double> numbers{double(face->boundary_id())};
+              for (const auto &p : points)
+                numbers.insert(numbers.end(), p.begin(), p.end());
+              all.push_back(numbers);
+            }
+    std::sort(all.begin(), all.end());
+    return all;
+  }
+
+  TEST(Meshes, HilbertOrderKeepsTheMesh)
+  {
+    // A cube with boundary ids 0 to 5 on its sides, refined twice: 1,536
+    // tetrahedra, more than one block, so make_mesh() renumbers them.
+    estep::MeshDescription d;
+    d.type          = "deal.II";
+    d.generator     = "hyper_cube";
+    d.arguments     = "0 : 1 : true";
+    d.n_refinements = 2;
+    dealii::Triangulation<3> ordered;
+    estep::make_mesh(d, ordered);
+    dealii::Triangulation<3> hex, plain;
+    dealii::GridGenerator::hyper_cube(hex, 0., 1., true);
+    hex.refine_global(2);
+    dealii::GridGenerator::convert_hypercube_to_simplex_mesh(hex, plain);
+    ASSERT_EQ(ordered.n_active_cells(), 1536u);
+    ASSERT_EQ(plain.n_active_cells(), 1536u);
+    EXPECT_EQ(cells_of(ordered, false), cells_of(plain, false));
+    const std::vector<std::vector<double>> faces = cells_of(ordered, true);
+    EXPECT_EQ(faces, cells_of(plain, true));
+    EXPECT_EQ(faces.size(), 6u * 16u * 4u);
+    EXPECT_EQ(faces.back()[0], 5.);
+    // The order did change: the first cells lie in one corner, not in each
+    // coarse child of deal.II's order.
+    unsigned int moved = 0;
+    auto         p     = plain.begin_active();
+    for (const auto &cell : ordered.active_cell_iterators())
+      moved += cell->center().distance((p++)->center()) > 1e-12;
+    EXPECT_GT(moved, 1000u);
+    estep::check_tetrahedral_mesh(ordered);
   }
 
   TEST(Meshes, Gmsh)

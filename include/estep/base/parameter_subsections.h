@@ -64,7 +64,7 @@ namespace estep
   {
     std::string path;
     TypeReaders readers;
-    std::string choice;
+    std::string choice = {};
   };
 
   /**

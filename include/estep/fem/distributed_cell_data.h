@@ -18,21 +18,21 @@
 namespace estep
 {
   /**
-   * The cells each of @p n_ranks ranks holds, from @p data holding every
-   * cell: rank r holds the cells of its blocks (rank_blocks()) and, after them,
-   * every cell that touches a point whose first cell lies in its blocks, to the
-   * end of that cell's gradient chunk (ElasticBody's gradient computes these
-   * points' forces from all their cells, chunk by chunk). An empty range for
-   * a rank without blocks.
+   * The chunks of cells (P1CellData::gradient_chunk) each of @p n_ranks ranks
+   * holds, in increasing order, from @p data holding every cell: rank r holds
+   * the chunks of its blocks (rank_blocks()) and every chunk with a cell that
+   * touches a point whose first cell lies in its blocks (ElasticBody's
+   * gradient computes these points' forces from all their cells, chunk by
+   * chunk). None for a rank without blocks.
    */
-  std::vector<BlockRange>
-  cells_held_by_ranks(const P1CellData &data, const unsigned int n_ranks);
+  std::vector<std::vector<unsigned int>>
+  chunks_held_by_ranks(const P1CellData &data, const unsigned int n_ranks);
 
   /**
    * make_p1_cell_data() of the mesh that @p make_mesh builds, of which every
    * rank receives its part: only the first rank builds the mesh and the
    * arrays, and sends each rank the per-point arrays and the boundary, and
-   * the per-cell arrays of the cells cells_held_by_ranks() gives it. So no
+   * the per-cell arrays of the chunks chunks_held_by_ranks() gives it. So no
    * other rank ever holds a deal.II mesh of the whole body or every cell's
    * data. What the first rank throws, every rank throws, with the same
    * message. On one rank, simply make_p1_cell_data(). Collective.

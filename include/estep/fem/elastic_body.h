@@ -155,7 +155,7 @@ namespace estep
 
     /** The precomputed per-cell data of the hot loops: of every cell, but
      * in a run on several MPI ranks of the cells this rank computes (see
-     * P1CellData::held_begin). */
+     * P1CellData::chunk_start). */
     const P1CellData &
     cell_data() const;
 

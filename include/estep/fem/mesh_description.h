@@ -101,7 +101,9 @@ namespace estep
    * dealii::ExcMessage with one clear message for an unknown type, bad
    * arguments, a missing or unreadable file (a gmsh file is first checked
    * with check_gmsh_file()), and non-tetrahedral, inverted or degenerate
-   * cells.
+   * cells (numbered as the mesher or the file numbers them). A mesh other
+   * than a box, of more than one block of cells (block_size), then has its
+   * cells renumbered by order_cells_along_hilbert_curve().
    */
   void
   make_mesh(const MeshDescription       &description,

@@ -48,6 +48,22 @@ namespace estep
     dealii::Triangulation<3, 3>       &tet_tria);
 
   /**
+   * Renumber the cells of @p tria (a mesh on its coarsest level only) in the
+   * order of their centroids along a Hilbert curve (deal.II's
+   * Utilities::inverse_Hilbert_space_filling_curve over the centroids'
+   * bounding box; equal indices keep their order). Vertices, vertex order
+   * within each cell, material ids and the boundary ids and manifold ids of
+   * faces and edges are kept; manifold objects attached to @p tria are not.
+   * Runs of consecutive cells are then compact in space, which is what the
+   * division of a body's cells among threads and MPI ranks in runs of whole
+   * blocks needs (parallel_blocks.h): a mesher's own order (gmsh's, or the
+   * coarse cells of a refined deal.II mesh) can make the points of one run
+   * touch cells all over the body.
+   */
+  void
+  order_cells_along_hilbert_curve(dealii::Triangulation<3, 3> &tria);
+
+  /**
    * Check that @p tria is a non-empty mesh of tetrahedra only, each with a
    * positive volume (vertex order as deal.II's reference tetrahedron) larger
    * than 1e-12 times the cube of its longest edge, no two cells with the

@@ -1,6 +1,8 @@
 #ifndef estep_fem_p1_cell_data_h
 #define estep_fem_p1_cell_data_h
 
+#include <estep/base/parallel_blocks.h>
+
 #include <array>
 #include <vector>
 
@@ -32,8 +34,9 @@ namespace estep
    * The cells are padded to a whole number of batches of four
    * (n_padded_cells(); see Lanes): the padding repeats the last cell with
    * volume 0, so that it adds nothing to sums over cells. The per-cell arrays
-   * hold the cells [held_begin, held_end()) of these, entry at(e) for cell
-   * e: all of them, but on each of several MPI ranks only those it computes
+   * hold whole chunks of gradient_chunk of these cells (the last one cut to
+   * n_padded_cells()), in the order of the cells, entry at(e) for cell e: all
+   * of them, but on each of several MPI ranks only those it computes
    * (distributed_cell_data.h).
    */
   struct P1CellData
@@ -53,21 +56,50 @@ namespace estep
       return (n_cells + 3) / 4 * 4;
     }
 
-    /** The first cell the per-cell arrays hold (a multiple of 4). */
-    unsigned int held_begin = 0;
-
-    /** One past the last cell they hold. */
+    /** The number of chunks of gradient_chunk cells of the padded cells. */
     unsigned int
-    held_end() const
+    n_chunks() const
     {
-      return held_begin + static_cast<unsigned int>(volume.size());
+      return n_blocks(n_padded_cells(), gradient_chunk);
     }
 
-    /** Where cell @p e is in the per-cell arrays. */
+    /** The cells of chunk @p c. */
+    BlockRange
+    chunk_cells(const unsigned int c) const
+    {
+      return block_range(c, n_padded_cells(), gradient_chunk);
+    }
+
+    /** chunk_start[c]: where the first cell of chunk c is in the per-cell
+     * arrays, or not_held. */
+    std::vector<unsigned int> chunk_start;
+
+    /** The chunk_start of a chunk the per-cell arrays do not hold. */
+    static constexpr unsigned int not_held = ~0u;
+
+    /** Let the per-cell arrays hold the chunks @p chunks (increasing), one
+     * after the other, and no others: sets chunk_start. */
+    void
+    hold_chunks(const std::vector<unsigned int> &chunks);
+
+    /** hold_chunks() of every chunk. */
+    void
+    hold_every_chunk();
+
+    /** The chunks the per-cell arrays hold, in increasing order. */
+    std::vector<unsigned int>
+    held_chunks() const;
+
+    /** Whether the per-cell arrays hold the cells @p cells, one after the
+     * other (whole chunks or parts of them). */
+    bool
+    holds(const BlockRange cells) const;
+
+    /** Where cell @p e is in the per-cell arrays (of a held chunk). */
     unsigned int
     at(const unsigned int e) const
     {
-      return e - held_begin;
+      return chunk_start[e / gradient_chunk] + e % gradient_chunk;
     }
 
     /** Number of points (vertices). */
