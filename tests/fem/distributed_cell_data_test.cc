@@ -107,9 +107,8 @@ namespace
 
   // gmsh numbers a ball's cells in no compact order: before make_mesh() put
   // them in the order of a Hilbert curve, the first of 2 ranks held (and
-  // computed the gradient of) almost every cell of this ball, and of 4 ranks
-  // the first held them all. Along the curve, each rank holds its cells and
-  // a layer of the others'.
+  // computed the gradient of) nearly every cell of a ball of gmsh. Along the
+  // curve, each rank holds its cells and a layer of the others'.
   TEST(ChunksHeldByRanks, ABallOfGmshInCompactRuns)
   {
     estep::MeshDescription d;
