@@ -7,7 +7,9 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/fem/ball_mesh.h>
+#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/meshes.h>
 #include <estep/materials/neo_hookean.h>
@@ -15,6 +17,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -84,6 +87,77 @@ namespace benchmark_cube
              std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
     };
     return a.steps == b.steps && same(a.q, b.q) && same(a.v, b.v);
+  }
+
+  /**
+   * The last table of the parallel benchmarks: the ball of
+   * make_ball_in_two_orders() spinning about its centre for 40 steps, in each
+   * order of its cells run by @p one_and_many(body, centre, steps), which
+   * returns its run on one thread or process and on several ("N" or "P",
+   * @p many). If @p print, a row per order: the times per step, the speedup,
+   * whether the two runs ended in the same bits, and the cells each of 2 MPI
+   * ranks holds (chunks_held_by_ranks()) relative to its own; then the
+   * ratios of the two orders' times, on one (@p one: "1 thread") and on
+   * several.
+   */
+  template <typename OneAndMany>
+  void
+  compare_cell_orders(const OneAndMany &one_and_many,
+                      const char       *one,
+                      const char       *many,
+                      const bool        print)
+  {
+    if (print)
+      {
+        std::printf("\nthe same, 40 steps of a ball of gmsh (mesh size 0.05) "
+                    "spinning about its centre, in two orders of its cells\n");
+        std::printf("%-14s %9s %13s %10s: s/step %8s %9s %17s\n",
+                    "cell order",
+                    "cells",
+                    "1: s/step",
+                    many,
+                    "speedup",
+                    "same bits",
+                    "held of 2 ranks");
+      }
+    std::array<dealii::Triangulation<3>, 2> balls;
+    make_ball_in_two_orders(balls);
+    std::array<double, 2> seconds_one{}, seconds_many{};
+    for (const unsigned int k : {0u, 1u})
+      {
+        const estep::ElasticBody body = body_on(balls[k], "ball");
+        const auto [single, several]  = one_and_many(body, {{0., 0., 0.}}, 40);
+        seconds_one[k]                = single.seconds;
+        seconds_many[k]               = several.seconds;
+        const estep::P1CellData &data = body.cell_data();
+        const auto               held = estep::chunks_held_by_ranks(data, 2);
+        std::array<double, 2>    ratio{};
+        for (const unsigned int r : {0u, 1u})
+          {
+            const estep::BlockRange own =
+              estep::rank_cells(data.n_padded_cells(), r, 2);
+            for (const unsigned int c : held[r])
+              ratio[r] += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+            ratio[r] /= own.end - own.begin;
+          }
+        if (print)
+          std::printf("%-14s %9u %13.3e %18.3e %8.2f %9s %8.2f %8.2f\n",
+                      k == 0 ? "gmsh's" : "Hilbert curve",
+                      body.n_cells(),
+                      single.seconds / single.steps,
+                      several.seconds / several.steps,
+                      single.seconds / several.seconds,
+                      same_end(single, several) ? "yes" : "NO",
+                      ratio[0],
+                      ratio[1]);
+      }
+    if (print)
+      std::printf("time in gmsh's order / along the curve: %.2f on %s, "
+                  "%.2f on %s\n",
+                  seconds_one[0] / seconds_one[1],
+                  one,
+                  seconds_many[0] / seconds_many[1],
+                  many);
   }
 } // namespace benchmark_cube
 

@@ -9,7 +9,8 @@
 // size 0.05, 152,424 cells, spinning about its centre, 40 steps) with its
 // cells in gmsh's order and along the Hilbert curve of the mesh factory
 // (order_cells_along_hilbert_curve()), with the ratios of the two orders'
-// times on 1 and on P processes.
+// times on 1 and on P processes, and the cells each of 2 ranks holds (and
+// computes the gradient of) relative to its own (chunks_held_by_ranks()).
 //
 // Usage: mpirun -np 2 build/benchmarks/benchmark_fem_mpi [largest
 //        subdivision, default 32] [end time, default 1]
@@ -129,43 +130,16 @@ main(int argc, char **argv)
                   benchmark_cube::same_end(alone, shared) ? "yes" : "NO");
     }
 
-  if (first)
-    {
-      std::printf("\nthe same, 40 steps of a ball of gmsh (mesh size 0.05) "
-                  "spinning about its centre, in two orders of its cells\n");
-      std::printf("%-14s %9s %13s %13s %8s %9s\n",
-                  "cell order",
-                  "cells",
-                  "1: s/step",
-                  "P: s/step",
-                  "speedup",
-                  "same bits");
-    }
   // Every process meshes the ball: gmsh, on one thread with a fixed seed,
   // makes the same mesh on each.
-  std::array<dealii::Triangulation<3>, 2> balls;
-  benchmark_cube::make_ball_in_two_orders(balls);
-  std::array<double, 2> alone_seconds{}, shared_seconds{};
-  for (const unsigned int k : {0u, 1u})
-    {
-      const estep::ElasticBody body = benchmark_cube::body_on(balls[k], "ball");
-      const auto [alone, shared] =
-        alone_and_shared(body, 1e9, 40, {{0., 0., 0.}});
-      alone_seconds[k]  = alone.seconds;
-      shared_seconds[k] = shared.seconds;
-      if (first)
-        std::printf("%-14s %9u %13.3e %13.3e %8.2f %9s\n",
-                    k == 0 ? "gmsh's" : "Hilbert curve",
-                    body.n_cells(),
-                    alone.seconds / alone.steps,
-                    shared.seconds / shared.steps,
-                    alone.seconds / shared.seconds,
-                    benchmark_cube::same_end(alone, shared) ? "yes" : "NO");
-    }
-  if (first)
-    std::printf("time in gmsh's order / along the curve: %.2f on 1 process, "
-                "%.2f on P\n",
-                alone_seconds[0] / alone_seconds[1],
-                shared_seconds[0] / shared_seconds[1]);
+  benchmark_cube::compare_cell_orders(
+    [](const estep::ElasticBody    &body,
+       const std::array<double, 3> &centre,
+       const unsigned int           steps) {
+      return alone_and_shared(body, 1e9, steps, centre);
+    },
+    "1 process",
+    "P",
+    first);
   return 0;
 }

@@ -18,9 +18,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/grid/tria.h>
 
-#include <estep/base/distributed_blocks.h>
 #include <estep/base/parallel_blocks.h>
-#include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/meshes.h>
 
 #include "centred_cube_run.h"
@@ -113,52 +111,14 @@ main(int argc, char **argv)
                   benchmark_cube::same_end(serial, parallel) ? "yes" : "NO");
     }
 
-  std::printf("\nthe same, 40 steps of a ball of gmsh (mesh size 0.05) "
-              "spinning about its centre, in two orders of its cells\n");
-  std::printf("%-14s %9s %13s %13s %8s %9s %17s\n",
-              "cell order",
-              "cells",
-              "1: s/step",
-              "N: s/step",
-              "speedup",
-              "same bits",
-              "held of 2 ranks");
-  std::array<dealii::Triangulation<3>, 2> balls;
-  benchmark_cube::make_ball_in_two_orders(balls);
-  std::array<double, 2> serial_seconds{}, parallel_seconds{};
-  for (const unsigned int k : {0u, 1u})
-    {
-      const estep::ElasticBody body = body_on(balls[k], "ball");
-      const auto [serial, parallel] =
-        serial_and_parallel(body, threads, 1e9, 40, {{0., 0., 0.}});
-      serial_seconds[k]   = serial.seconds;
-      parallel_seconds[k] = parallel.seconds;
-      // The cells each of 2 ranks holds (and computes the gradient of),
-      // relative to its own.
-      const estep::P1CellData &data = body.cell_data();
-      const auto               held = estep::chunks_held_by_ranks(data, 2);
-      std::array<double, 2>    ratio{};
-      for (const unsigned int r : {0u, 1u})
-        {
-          const estep::BlockRange own =
-            estep::rank_cells(data.n_padded_cells(), r, 2);
-          for (const unsigned int c : held[r])
-            ratio[r] += data.chunk_cells(c).end - data.chunk_cells(c).begin;
-          ratio[r] /= own.end - own.begin;
-        }
-      std::printf("%-14s %9u %13.3e %13.3e %8.2f %9s %8.2f %8.2f\n",
-                  k == 0 ? "gmsh's" : "Hilbert curve",
-                  body.n_cells(),
-                  serial.seconds / serial.steps,
-                  parallel.seconds / parallel.steps,
-                  serial.seconds / parallel.seconds,
-                  benchmark_cube::same_end(serial, parallel) ? "yes" : "NO",
-                  ratio[0],
-                  ratio[1]);
-    }
-  std::printf("time in gmsh's order / along the curve: %.2f on 1 thread, "
-              "%.2f on N\n",
-              serial_seconds[0] / serial_seconds[1],
-              parallel_seconds[0] / parallel_seconds[1]);
+  benchmark_cube::compare_cell_orders(
+    [&](const estep::ElasticBody    &body,
+        const std::array<double, 3> &centre,
+        const unsigned int           steps) {
+      return serial_and_parallel(body, threads, 1e9, steps, centre);
+    },
+    "1 thread",
+    "N",
+    true);
   return 0;
 }

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <numeric>
@@ -246,8 +247,30 @@ namespace estep
           sum += vertices[v];
         centroids.push_back(sum / double(cell.vertices.size()));
       }
+    // Integer coordinates on one scale for all three axes: deal.II's
+    // version for points scales each axis to its own extent, which cuts a
+    // long body into runs across its length.
+    dealii::Point<3> lower = centroids[0], upper = centroids[0];
+    for (const dealii::Point<3> &c : centroids)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          lower[d] = std::min(lower[d], c[d]);
+          upper[d] = std::max(upper[d], c[d]);
+        }
+    double extent = 0.;
+    for (unsigned int d = 0; d < 3; ++d)
+      extent = std::max(extent, upper[d] - lower[d]);
+    constexpr int bits    = 32;
+    const double  largest = std::ldexp(1., bits) - 1.;
+    const double  scale   = extent > 0. ? largest / extent : 0.;
+    std::vector<std::array<std::uint64_t, 3>> coordinates(centroids.size());
+    for (std::size_t e = 0; e < centroids.size(); ++e)
+      for (unsigned int d = 0; d < 3; ++d)
+        coordinates[e][d] = static_cast<std::uint64_t>(
+          std::min((centroids[e][d] - lower[d]) * scale, largest));
     const std::vector<std::array<std::uint64_t, 3>> curve =
-      dealii::Utilities::inverse_Hilbert_space_filling_curve(centroids);
+      dealii::Utilities::inverse_Hilbert_space_filling_curve<3>(coordinates,
+                                                                bits);
     std::vector<unsigned int> order(cells.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(),

@@ -50,8 +50,9 @@ namespace estep
   /**
    * Renumber the cells of @p tria (a mesh on its coarsest level only) in the
    * order of their centroids along a Hilbert curve (deal.II's
-   * Utilities::inverse_Hilbert_space_filling_curve over the centroids'
-   * bounding box; equal indices keep their order). Vertices, vertex order
+   * Utilities::inverse_Hilbert_space_filling_curve, of the centroids in the
+   * smallest cube that holds them, 32 bits per axis; equal indices keep their
+   * order). Vertices, vertex order
    * within each cell, material ids and the boundary ids and manifold ids of
    * faces and edges are kept; manifold objects attached to @p tria are not.
    * Runs of consecutive cells are then compact in space, which is what the
