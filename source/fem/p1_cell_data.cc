@@ -202,10 +202,12 @@ namespace estep
   {
     chunk_start.assign(n_chunks(), not_held);
     unsigned int position = 0;
-    for (const unsigned int c : chunks)
+    for (std::size_t i = 0; i < chunks.size(); ++i)
       {
+        const unsigned int c = chunks[i];
         AssertIndexRange(c, n_chunks());
-        Assert(chunk_start[c] == not_held, dealii::ExcInternalError());
+        Assert(i == 0 || c > chunks[i - 1],
+               dealii::ExcMessage("hold_chunks: the chunks must increase."));
         chunk_start[c]         = position;
         const BlockRange cells = chunk_cells(c);
         position += cells.end - cells.begin;

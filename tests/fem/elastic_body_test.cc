@@ -137,6 +137,10 @@ namespace
     estep::P1CellData part = estep::make_p1_cell_data(tria, 2.);
     part.for_each_cell_array([](auto &v) { v.resize(v.size() - 4); });
     EXPECT_THROW(estep::ElasticBody(part, material), dealii::ExceptionBase);
+    // So are arrays without the table of the chunks they hold.
+    estep::P1CellData unmapped = estep::make_p1_cell_data(tria, 2.);
+    unmapped.chunk_start.clear();
+    EXPECT_THROW(estep::ElasticBody(unmapped, material), dealii::ExceptionBase);
   }
 
   TEST(ElasticBody, SpinningCubeKineticEnergyAndAngularMomentum)
