@@ -8,7 +8,6 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/exception_text.h>
-#include <estep/base/parallel_blocks.h>
 #include <estep/base/point_entry.h>
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/gmsh_check.h>
@@ -247,11 +246,10 @@ namespace estep
       dealii::GridTools::shift(
         dealii::Tensor<1, 3>({d.shift[0], d.shift[1], d.shift[2]}), tria);
     check_tetrahedral_mesh(tria);
-    // Threads and ranks divide a body's cells in runs of whole blocks: the
-    // box is made layer by layer, the other meshes in their mesher's order,
-    // which need not be compact. A mesh of one block is never divided.
-    if (d.type != "box" && tria.n_active_cells() > block_size)
-      order_cells_along_hilbert_curve(tria);
+    // The box is made layer by layer, the other meshes in their mesher's
+    // order, which need not be compact.
+    if (d.type != "box")
+      order_cells_compactly(tria);
   }
 
 

@@ -6,6 +6,7 @@
 #include <deal.II/grid/reference_cell.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/meshes.h>
 
 #include <algorithm>
@@ -284,5 +285,12 @@ namespace estep
       ordered.push_back(cells[e]);
     tria.clear();
     tria.create_triangulation(vertices, ordered, faces_and_edges);
+  }
+
+  void
+  order_cells_compactly(dealii::Triangulation<3, 3> &tria)
+  {
+    if (tria.n_active_cells() > block_size)
+      order_cells_along_hilbert_curve(tria);
   }
 } // namespace estep

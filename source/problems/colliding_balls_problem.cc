@@ -7,6 +7,7 @@
 #include <estep/fem/ball_mesh.h>
 #include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
+#include <estep/fem/meshes.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
 
@@ -110,6 +111,7 @@ namespace estep
             try
               {
                 make_ball_mesh(tria, size, scale * R, centre);
+                order_cells_compactly(tria);
               }
             catch (const std::exception &e)
               {

@@ -102,8 +102,7 @@ namespace estep
    * arguments, a missing or unreadable file (a gmsh file is first checked
    * with check_gmsh_file()), and non-tetrahedral, inverted or degenerate
    * cells (numbered as the mesher or the file numbers them). A mesh other
-   * than a box, of more than one block of cells (block_size), then has its
-   * cells renumbered by order_cells_along_hilbert_curve().
+   * than a box then goes through order_cells_compactly().
    */
   void
   make_mesh(const MeshDescription       &description,

@@ -65,6 +65,16 @@ namespace estep
   order_cells_along_hilbert_curve(dealii::Triangulation<3, 3> &tria);
 
   /**
+   * order_cells_along_hilbert_curve() if @p tria has more than one block of
+   * cells (block_size of parallel_blocks.h); a mesh of one block, which
+   * threads and ranks never divide, keeps its order. What every mesh but the
+   * box (made layer by layer) goes through: make_mesh()'s and the colliding
+   * balls'.
+   */
+  void
+  order_cells_compactly(dealii::Triangulation<3, 3> &tria);
+
+  /**
    * Check that @p tria is a non-empty mesh of tetrahedra only, each with a
    * positive volume (vertex order as deal.II's reference tetrahedron) larger
    * than 1e-12 times the cube of its longest edge, no two cells with the
