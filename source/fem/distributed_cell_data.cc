@@ -136,6 +136,26 @@ namespace estep
 
 
 
+  std::vector<double>
+  cells_held_on_each_rank(const std::vector<const P1CellData *> &bodies)
+  {
+    double mine = 0.;
+    for (const P1CellData *data : bodies)
+      for (const unsigned int c : data->held_chunks())
+        {
+          const BlockRange cells = data->chunk_cells(c);
+          mine += std::min(cells.end, data->n_cells) -
+                  std::min(cells.begin, data->n_cells);
+        }
+    std::vector<double> all(rank_count());
+    gather_from_all_ranks(&mine,
+                          std::vector<unsigned int>(rank_count(), 1),
+                          all.data());
+    return all;
+  }
+
+
+
   P1CellData
   gather_every_cell(const P1CellData &data)
   {

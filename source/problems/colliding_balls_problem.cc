@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/composite/contact_parameters.h>
 #include <estep/composite/contact_system.h>
@@ -151,6 +152,11 @@ namespace estep
         .add("contact", ContactParameters::mode_name(contact.mode));
       if (speed > 0. && ratio == 1.)
         problem.description.add("Hertz contact duration estimate", hertz);
+      if (rank_count() > 1)
+        problem.description.add("cells held by each process",
+                                cells_held_on_each_rank(
+                                  {&bodies[0]->cell_data(),
+                                   &bodies[1]->cell_data()}));
       auto system =
         std::make_unique<ContactSystem>(bodies, contact, "colliding balls");
       problem.q0     = system->concatenate(q);

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/parameter_subsections.h>
 #include <estep/base/point_entry.h>
@@ -165,6 +166,9 @@ namespace estep
         .add("mesh", mesh.type)
         .add("material", material.material->name())
         .add("density", material.density);
+      if (rank_count() > 1)
+        problem.description.add("cells held by each process",
+                                cells_held_on_each_rank({&body->cell_data()}));
       problem.system = std::move(body);
       // Entries that the chosen mesh type and velocity type do not read.
       problem.ignored_settings = entries_unread_by_type(

@@ -5,6 +5,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <estep/base/checksum.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/base/parameter_subsections.h>
 #include <estep/base/point_entry.h>
@@ -686,6 +687,14 @@ namespace estep
         .add("surface obstacles", static_cast<unsigned int>(surfaces.size()))
         .add("surface obstacle triangles", n_surface_triangles)
         .add("contact", ContactParameters::mode_name(contact.mode));
+      if (rank_count() > 1)
+        {
+          std::vector<const P1CellData *> cells;
+          for (const auto &b : body_list)
+            cells.push_back(&b->cell_data());
+          problem.description.add("cells held by each process",
+                                  cells_held_on_each_rank(cells));
+        }
       auto scene = std::make_unique<Scene>(system,
                                            bodies_system,
                                            std::move(to_bodies),

@@ -6,7 +6,8 @@
 # the same datasets as one process in HDF5. An output that fails mid-run, or at the start, ends
 # every process. A system without elastic cells, or with fewer cells
 # than processes, is refused; so is a mesh the first process (which alone builds it) cannot read.
-# Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh).
+# Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh). summary.json
+# records the cells each process holds.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
 # MPIEXEC, the MPI launcher.
 set -u
@@ -53,6 +54,14 @@ cube=("$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10"
       --set "Time integration/End time=1.5" --set "Output/Checkpoint interval=0.25"
       --set "Postprocessors/List=history, step histogram, progress")
 same_on_ranks cube "${cube[@]}"
+# What each process holds, in summary.json: the second its own cells alone (every cell of its
+# points comes after its first cell), the first its own and a layer of the second's.
+/usr/bin/python3 - << 'PY' || fail "cube: summary.json's cells held by each process"
+import json, sys
+held = json.load(open("cube-2x1/summary.json"))["problem"]["cells held by each process"]
+own = [12 * 1024, 24000 - 12 * 1024]
+sys.exit(0 if held[1] == own[1] and own[0] < held[0] < 1.5 * own[0] else f"held {held}, own {own}")
+PY
 
 # An implicit method: its Hessian needs every cell, which each process gathers from the others
 # (each holds only the cells it computes). The cube of 5,184 cells (6 blocks), IDA to t = 1; and

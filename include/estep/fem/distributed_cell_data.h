@@ -43,6 +43,14 @@ namespace estep
     const double                                              density);
 
   /**
+   * The cells (the padding aside) whose data each rank holds, summed over
+   * @p bodies, in rank order: its own and the chunks its gradient needs
+   * (chunks_held_by_ranks()). Collective.
+   */
+  std::vector<double>
+  cells_held_on_each_rank(const std::vector<const P1CellData *> &bodies);
+
+  /**
    * The P1CellData of every cell, on every rank, from the ranks' parts
    * @p data (each sends the cells of its blocks). A copy of @p data if it
    * holds every cell. Collective when it does not.
