@@ -134,11 +134,8 @@ namespace benchmark_cube
         std::array<double, 2>    ratio{};
         for (const unsigned int r : {0u, 1u})
           {
-            const estep::BlockRange own =
-              estep::rank_cells(data.n_padded_cells(), r, 2);
-            for (const unsigned int c : held[r])
-              ratio[r] += data.chunk_cells(c).end - data.chunk_cells(c).begin;
-            ratio[r] /= own.end - own.begin;
+            const estep::BlockRange own = estep::rank_cells(data.n_cells, r, 2);
+            ratio[r] = double(data.n_cells_in(held[r])) / (own.end - own.begin);
           }
         if (print)
           std::printf("%-14s %9u %13.3e %18.3e %8.2f %9s %8.2f %8.2f\n",

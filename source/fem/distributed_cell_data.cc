@@ -141,12 +141,7 @@ namespace estep
   {
     double mine = 0.;
     for (const P1CellData *data : bodies)
-      for (const unsigned int c : data->held_chunks())
-        {
-          const BlockRange cells = data->chunk_cells(c);
-          mine += std::min(cells.end, data->n_cells) -
-                  std::min(cells.begin, data->n_cells);
-        }
+      mine += data->n_cells_in(data->held_chunks());
     std::vector<double> all(rank_count());
     gather_from_all_ranks(&mine,
                           std::vector<unsigned int>(rank_count(), 1),

@@ -232,6 +232,16 @@ namespace estep
     return chunks;
   }
 
+  unsigned int
+  P1CellData::n_cells_in(const std::vector<unsigned int> &chunks) const
+  {
+    unsigned int n = 0;
+    for (const unsigned int c : chunks)
+      n += std::min(chunk_cells(c).end, n_cells) -
+           std::min(chunk_cells(c).begin, n_cells);
+    return n;
+  }
+
   bool
   P1CellData::holds(const BlockRange cells) const
   {

@@ -62,17 +62,6 @@ namespace
     return needed;
   }
 
-  /** The number of cells in @p chunks of @p data. */
-  unsigned int
-  cells_in(const estep::P1CellData         &data,
-           const std::vector<unsigned int> &chunks)
-  {
-    unsigned int n = 0;
-    for (const unsigned int c : chunks)
-      n += data.chunk_cells(c).end - data.chunk_cells(c).begin;
-    return n;
-  }
-
   TEST(ChunksHeldByRanks, ItsBlocksAndExactlyTheChunksItsPointsNeed)
   {
     const estep::P1CellData &data     = estep_test::seed_cube().cell_data();
@@ -88,7 +77,7 @@ namespace
         unsigned int total = 0, empty = 0;
         for (unsigned int r = 0; r < held.size(); ++r)
           {
-            total += cells_in(data, held[r]);
+            total += data.n_cells_in(held[r]);
             empty += held[r].empty();
           }
         EXPECT_EQ(empty, n_ranks > n_blocks ? n_ranks - n_blocks : 0u);
@@ -100,8 +89,8 @@ namespace
           {
             // The box is numbered layer by layer: each rank holds its half
             // and the first rank one layer of hexahedra more (1,536 cells).
-            EXPECT_EQ(cells_in(data, held[0]), n_padded / 2 + n_padded / 8);
-            EXPECT_EQ(cells_in(data, held[1]), n_padded / 2);
+            EXPECT_EQ(data.n_cells_in(held[0]), n_padded / 2 + n_padded / 8);
+            EXPECT_EQ(data.n_cells_in(held[1]), n_padded / 2);
           }
       }
   }
@@ -127,9 +116,9 @@ namespace
         for (unsigned int r = 0; r < n_ranks; ++r)
           {
             const BlockRange own = estep::rank_cells(n_padded, r, n_ranks);
-            EXPECT_LT(cells_in(data, held[r]), 2 * (own.end - own.begin))
+            EXPECT_LT(data.n_cells_in(held[r]), 2 * (own.end - own.begin))
               << n_ranks << " ranks, rank " << r;
-            in_all[k] += cells_in(data, held[r]);
+            in_all[k] += data.n_cells_in(held[r]);
           }
         in_all[k] /= n_padded;
       }

@@ -52,9 +52,9 @@ namespace estep
    * order of their centroids along a Hilbert curve (deal.II's
    * Utilities::inverse_Hilbert_space_filling_curve, of the centroids in the
    * smallest cube that holds them, 32 bits per axis; equal indices keep their
-   * order). Vertices, vertex order
-   * within each cell, material ids and the boundary ids and manifold ids of
-   * faces and edges are kept; manifold objects attached to @p tria are not.
+   * order). Vertices, vertex order within each cell, material ids and the
+   * boundary ids and manifold ids of faces and edges are kept; manifold
+   * objects attached to @p tria are not.
    * Runs of consecutive cells are then compact in space, which is what the
    * division of a body's cells among threads and MPI ranks in runs of whole
    * blocks needs (parallel_blocks.h): a mesher's own order (gmsh's, or the

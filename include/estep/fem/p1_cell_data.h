@@ -90,6 +90,10 @@ namespace estep
     std::vector<unsigned int>
     held_chunks() const;
 
+    /** The number of cells (the padding aside) in the chunks @p chunks. */
+    unsigned int
+    n_cells_in(const std::vector<unsigned int> &chunks) const;
+
     /** Whether the per-cell arrays hold the cells @p cells, one after the
      * other (whole chunks or parts of them). */
     bool
