@@ -326,11 +326,12 @@ namespace estep
     // The chunks of cells with a vertex among a part's points, in runs of at
     // most block_size cells, and the range of the points they touch. All of
     // them lie among the cells this rank holds (chunks_held_by_ranks()).
+    const std::vector<unsigned int> held = data.held_chunks();
     for (unsigned int j = 0; j < n_parts; ++j)
       {
         Part &part  = parts[j];
         part.lowest = data.n_points;
-        for (const unsigned int c : data.held_chunks())
+        for (const unsigned int c : held)
           {
             const unsigned int chunk  = data.chunk_cells(c).begin;
             const unsigned int end    = data.chunk_cells(c).end;
