@@ -202,6 +202,23 @@ namespace estep
 
 
 
+  double
+  ContactMonitor::collision_restitution(const Vector &q0,
+                                        const Vector &v0,
+                                        const Vector &q1,
+                                        const Vector &v1) const
+  {
+    // Over: the bodies have been apart for at least as long as they were in
+    // contact (a penalty contact has step ends without intersecting faces in
+    // its midst).
+    const double apart = integrator.time() - last_contact;
+    if (n_contact_instants == 0 || in_contact || apart < contact_duration())
+      return std::numeric_limits<double>::quiet_NaN();
+    return restitution(q0, v0, q1, v1);
+  }
+
+
+
   JsonObject
   ContactMonitor::summary(const Vector &q0,
                           const Vector &v0,
@@ -220,7 +237,7 @@ namespace estep
         .add("contact duration", contact_duration())
         .add("contact duration resolution",
              std::max(step_before_first_contact, step_after_last_contact));
-    const double e = restitution(q0, v0, q1, v1);
+    const double e = collision_restitution(q0, v0, q1, v1);
     if (std::isfinite(e))
       result.add("coefficient of restitution", e);
     JsonObject final_motion;
@@ -247,8 +264,12 @@ namespace estep
     else
       out << "contact from t = " << first_contact << " to " << last_contact
           << " (duration " << contact_duration() << ", " << n_contact_instants
-          << " step ends in contact)";
-    const double e = restitution(q0, v0, q1, v1);
+          << " step ends in contact"
+          << (std::isfinite(collision_restitution(q0, v0, q1, v1)) ?
+                "" :
+                ", perhaps not over")
+          << ")";
+    const double e = collision_restitution(q0, v0, q1, v1);
     if (std::isfinite(e))
       out << ", coefficient of restitution " << e;
     out << ", at most " << largest_pair_count

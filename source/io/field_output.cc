@@ -94,11 +94,13 @@ namespace estep
                    const std::string   &directory,
                    const Format         format,
                    const double         start_time,
-                   const double         interval)
+                   const double         interval,
+                   const double         end_time)
       : bodies(bodies)
       , directory(directory)
       , format(format)
       , interval(interval)
+      , end_time(end_time)
       , next_time(start_time)
       , rank(this_rank())
       , ranks(rank_count())
@@ -153,7 +155,7 @@ namespace estep
     const ElasticBodies        &bodies;
     const std::filesystem::path directory;
     const Format                format;
-    const double                interval;
+    const double                interval, end_time;
     double                      next_time;
     /** Whether the system has obstacles to draw. */
     bool has_obstacles = false;
@@ -265,12 +267,14 @@ namespace estep
                            const std::string   &directory,
                            const Format         format,
                            const double         start_time,
-                           const double         interval)
+                           const double         interval,
+                           const double         end_time)
     : implementation(std::make_unique<Implementation>(bodies,
                                                       directory,
                                                       format,
                                                       start_time,
-                                                      interval))
+                                                      interval,
+                                                      end_time))
   {}
 
 
@@ -382,20 +386,23 @@ namespace estep
   void
   FieldOutput::after_step(const TimeIntegrator &integrator)
   {
-    Implementation &self = *implementation;
+    Implementation &self     = *implementation;
+    const auto      write_at = [&](const double t) {
+      try
+        {
+          write(
+            integrator.dense_state(std::max(t, integrator.previous_time())));
+        }
+      catch (const std::runtime_error &error)
+        {
+          // A snapshot or the series file could not be written: the run
+          // stops with status failed.
+          throw OutputFailed(field_output_message(error));
+        }
+    };
     while (self.next_time <= integrator.time())
       {
-        try
-          {
-            write(integrator.dense_state(
-              std::max(self.next_time, integrator.previous_time())));
-          }
-        catch (const std::runtime_error &error)
-          {
-            // A snapshot or the series file could not be written: the run
-            // stops with status failed.
-            throw OutputFailed(field_output_message(error));
-          }
+        write_at(self.next_time);
         if (!(self.interval > 0.))
           {
             self.next_time = std::numeric_limits<double>::infinity();
@@ -403,6 +410,19 @@ namespace estep
           }
         self.next_time += self.interval;
       }
+    // The end time gets a snapshot too, as history.csv gets a row there,
+    // unless the last snapshot lies within round-off of it; one that stands
+    // in for the next time of the grid takes its place (a resumed run with a
+    // later end time goes on from the one after).
+    const double t_end = self.end_time;
+    if (integrator.time() < t_end)
+      return;
+    const double round_off = 1e-12 * std::max(std::abs(t_end), self.interval);
+    if (!self.series.empty() && self.series.back().first >= t_end - round_off)
+      return;
+    write_at(t_end);
+    if (self.next_time - t_end <= round_off)
+      self.next_time += self.interval;
   }
 
 
@@ -578,7 +598,8 @@ namespace estep
                         dealii::Patterns::Double(
                           0., dealii::Patterns::Double::max_double_value),
                         "Write a snapshot every this much simulated time, "
-                        "from the start time on; must be positive.");
+                        "from the start time on, and one at the end time; "
+                        "must be positive.");
       prm.declare_entry(
         "Format",
         "vtu",
@@ -620,7 +641,8 @@ namespace estep
                                              FieldOutput::Format::hdf5 :
                                              FieldOutput::Format::vtu,
                                            run.start_time,
-                                           interval);
+                                           interval,
+                                           run.end_time);
     }
   } // namespace
 } // namespace estep
@@ -628,7 +650,7 @@ namespace estep
 ESTEP_REGISTER_POSTPROCESSOR(
   "field output",
   "snapshots of an elastic body's fields for ParaView (displacement, "
-  "velocity, J, strain energy density) in fields/, with a time series file "
-  "(subsection Field output).",
+  "velocity, J, strain energy density, Cauchy stress, von Mises stress) in "
+  "fields/, with a time series file (subsection Field output).",
   estep::declare_field_output_parameters,
   estep::create_field_output)

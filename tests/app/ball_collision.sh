@@ -8,7 +8,8 @@
 # coefficient of restitution in [0.7, 1] and a contact duration in [0.03, 0.07] (reference text 0.964,
 # 0.0476; the restitution is chaotic in round-off: 0.811 ... 0.912 measured under
 # perturbations of 1e-10 and below, doc/contact_system.md); the Hertz estimate is 0.0694; the steps shrink below 1e-5 during contact, but no
-# step has zero length (simultaneous contacts make one event). Then the
+# step has zero length (simultaneous contacts make one event). Stopped before the contact and
+# during it, a run reports no restitution. Then the
 # high-speed variant (parameter_files/ball_collision_high_speed.prm).
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
 set -u
@@ -66,6 +67,17 @@ for run in ball_collision ball_collision_impenetrable; do
 done
 check ball_collision positive
 check ball_collision_impenetrable zero
+
+# No restitution before a first contact or while one lasts (it would be a made-up number):
+# the penalty run stopped at t = 0.05 (the balls meet at about 0.104) and at t = 0.12.
+for stop in 0.05 0.12; do
+  "$ESTEP" "$ESTEP_SOURCE_DIR/parameter_files/ball_collision.prm" -s "Output directory=output/stop_$stop" \
+    -s "Time integration/End time=$stop" > "stop_$stop.log" 2>&1 || fail "the run to t = $stop exited with $?"
+  ! grep -q "coefficient of restitution" "stop_$stop.log" || fail "a restitution printed at t = $stop: $(tail -1 "stop_$stop.log")"
+  ! grep -q "coefficient of restitution" "output/stop_$stop/summary.json" || fail "a restitution in the summary at t = $stop"
+done
+grep -q "no contact," stop_0.05.log || fail "the run to t = 0.05 does not say no contact: $(tail -1 stop_0.05.log)"
+grep -q "perhaps not over" stop_0.12.log || fail "the run to t = 0.12 does not say the contact lasts: $(tail -1 stop_0.12.log)"
 
 # The high-speed variant (a ball of radius 0.2 at relative speed 100, exact impenetrability):
 # no intersecting pair at any step end, the small ball bounces back (no tunnelling), energy and

@@ -3,7 +3,7 @@
 # and the three angular-momentum components to 1e-11 relative over a short run, with the
 # seed's mesh counts and initial kinetic energy; explicit Newmark at dt = 0.0381 is reported
 # unstable (status, message, exit code 2) and at dt = 0.0082 its energy drift is reported; the
-# second material (chosen by name) conserves the same way.
+# second material (chosen by name) conserves the same way; field output writes the end time too.
 set -u
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -32,6 +32,20 @@ rc=$?
   -s "Postprocessors/List=history, field output" -s "Postprocessors/Field output/Interval=2" \
   -s "Postprocessors/Field output/Format=hdf5" > h5.log 2>&1 || { cat h5.log; failures=$((failures + 1)); }
 [[ $(grep -c "Time Value" h5/solution.xdmf) == 3 ]] || { echo "solution.xdmf does not list 3 times"; failures=$((failures + 1)); }
+
+# A snapshot at the end time, off the grid (1.2 with an interval of 0.5), or within round-off of
+# it (0.3 = 3 x 0.1, none twice); a resumed run to a later end time goes on along the grid.
+times() { grep -o 'timestep="[^"]*"' "$1/solution.pvd" | sed 's/timestep="\(.*\)"/\1/' | tr '\n' ' '; }
+small=(-s "Elastic body/Mesh/Subdivisions=2" -s "Postprocessors/List=field output")
+"$ESTEP" "$prm" "${small[@]}" -s "Output directory=end" -s "Time integration/End time=1.2" \
+  -s "Postprocessors/Field output/Interval=0.5" > end.log 2>&1 || { cat end.log; failures=$((failures + 1)); }
+[[ $(times end) == "0 0.5 1 1.2 " ]] || { echo "snapshots at $(times end), expected 0 0.5 1 1.2"; failures=$((failures + 1)); }
+"$ESTEP" "$prm" "${small[@]}" -s "Output directory=end" -s "Time integration/End time=2" --resume \
+  -s "Postprocessors/Field output/Interval=0.5" > resumed.log 2>&1 || { cat resumed.log; failures=$((failures + 1)); }
+[[ $(times end) == "0 0.5 1 1.2 1.5 2 " ]] || { echo "resumed: snapshots at $(times end), expected 0 0.5 1 1.2 1.5 2"; failures=$((failures + 1)); }
+"$ESTEP" "$prm" "${small[@]}" -s "Output directory=tenths" -s "Time integration/End time=0.3" \
+  -s "Postprocessors/Field output/Interval=0.1" > tenths.log 2>&1 || { cat tenths.log; failures=$((failures + 1)); }
+[[ $(ls tenths/fields | wc -l) == 4 ]] || { echo "to t = 0.3 every 0.1: snapshots at $(times tenths)"; failures=$((failures + 1)); }
 
 /usr/bin/python3 - <<'PY' || failures=$((failures + 1))
 import csv, json, sys

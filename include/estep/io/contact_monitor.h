@@ -84,10 +84,21 @@ namespace estep
                 const Vector &q1,
                 const Vector &v1) const;
 
+    /** restitution() once a collision is over: the bodies have been in
+     * contact, and apart since for at least as long as the contact lasted.
+     * NaN otherwise: before a first contact, or while one may still go on,
+     * there is no collision to measure. */
+    double
+    collision_restitution(const Vector &q0,
+                          const Vector &v0,
+                          const Vector &q1,
+                          const Vector &v1) const;
+
     /**
      * The summary of the run: the counts and times above, the restitution
-     * between (q0, v0) and (q1, v1) and the final rigid motion of every body
-     * and of the system.
+     * between (q0, v0) and (q1, v1) once a collision is over
+     * (collision_restitution(); left out otherwise) and the final rigid
+     * motion of every body and of the system.
      */
     JsonObject
     summary(const Vector &q0,

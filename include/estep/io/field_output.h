@@ -13,10 +13,10 @@ namespace estep
 
   /**
    * Field output of elastic bodies for ParaView, every @p interval of
-   * simulated time from the start time on (the exact dense output of the
-   * integrator): the displacement and the velocity (vertex fields), the volume
-   * ratio J, the strain energy density, the Cauchy stress tensor and the von
-   * Mises stress (cell fields).
+   * simulated time from the start time on, and at the end time (the exact
+   * dense output of the integrator): the displacement and the velocity (vertex
+   * fields), the volume ratio J, the strain energy density, the Cauchy stress
+   * tensor and the von Mises stress (cell fields).
    *
    * Format "vtu": one fields/solution-NNNNN.vtu per snapshot (VtuFile: the
    * mesh's own vertices and cells, compressed), or for several bodies one
@@ -52,7 +52,8 @@ namespace estep
                 const std::string   &directory,
                 const Format         format,
                 const double         start_time,
-                const double         interval);
+                const double         interval,
+                const double         end_time);
 
     ~FieldOutput() override;
 
