@@ -120,23 +120,23 @@ namespace estep
      * input error.
      */
     void
-    check_distribution(const MechanicalSystem &system)
+    check_distribution(const Problem &problem)
     {
       const unsigned int ranks = rank_count();
       if (ranks == 1)
         return;
-      const unsigned long long cells = elastic_cells(system);
+      const unsigned long long cells = elastic_cells(*problem.system);
       if (cells == 0)
         throw std::runtime_error(
           "estep was started as " + std::to_string(ranks) +
-          " MPI processes, but the " + system.name() +
+          " MPI processes, but the " + problem.name +
           " has no elastic body whose cells they could share. Run it as "
           "one process; it uses every core (--threads).");
       if (cells < ranks)
         throw std::runtime_error(
           "estep was started as " + std::to_string(ranks) +
           " MPI processes, more than the " + std::to_string(cells) +
-          " cells of the " + system.name() +
+          " cells of the " + problem.name +
           " they would share. Start at most as many processes as cells "
           "(and for a gain, far fewer: see doc/parallel.md).");
     }
@@ -425,14 +425,14 @@ namespace estep
       return integrator;
     }
 
-    /** The settings of the input that the run ignores: the problem's, then
-     * those of the other time integrators and of the postprocessors missing
-     * from the List (ignored_integrator_settings(),
-     * ignored_postprocessor_settings()). */
+    /** The warnings about the input: the problem's (Problem::warnings), then
+     * the settings of the other time integrators and of the postprocessors
+     * missing from the List, which the run ignores
+     * (ignored_integrator_settings(), ignored_postprocessor_settings()). */
     std::vector<std::string>
-    ignored_settings(dealii::ParameterHandler &prm, const Problem &problem)
+    input_warnings(dealii::ParameterHandler &prm, const Problem &problem)
     {
-      std::vector<std::string> warnings = problem.ignored_settings;
+      std::vector<std::string> warnings = problem.warnings;
       const auto               add = [&](const std::vector<std::string> &more) {
         warnings.insert(warnings.end(), more.begin(), more.end());
       };
@@ -529,7 +529,7 @@ namespace estep
                           const std::string &message)
     {
       // One write, which the launcher's banner of MPI_Abort cannot split.
-      std::cerr << ("estep: " + message + "\n");
+      std::cerr << ("estep: error: " + message + "\n");
       try
         {
           write_file_atomically(
@@ -674,12 +674,21 @@ namespace estep
 
       const Problem problem = create_problem(prm);
       check_initial_state(problem);
-      check_distribution(*problem.system);
+      check_distribution(problem);
       const bool writes_output = this_rank() == 0;
       const auto integrator =
         create_initialized_integrator(prm, problem, parameters);
       const std::vector<std::string> warnings_at_start = integrator->warnings();
-      const std::vector<std::string> ignored = ignored_settings(prm, problem);
+      std::vector<std::string>       warnings_about_input =
+        input_warnings(prm, problem);
+      if (const unsigned int cores = dealii::MultithreadInfo::n_cores();
+          parameters.threads > cores)
+        warnings_about_input.push_back(
+          "Threads: " + std::to_string(parameters.threads) +
+          " threads on a machine of " + std::to_string(cores) +
+          " cores: at most " + std::to_string(cores) +
+          " run at a time, and the loops' extra parts only cost time (the "
+          "trajectory is the same on any number).");
       // The other ranks hold the same state: they run only the
       // postprocessors that write a part of their own.
       auto postprocessors =
@@ -689,7 +698,7 @@ namespace estep
                              postprocessors,
                              parameters.start_time,
                              parameters.end_time,
-                             ignored};
+                             warnings_about_input};
 
       const std::filesystem::path directory(parameters.output_directory);
       const std::string   summary_file = (directory / "summary.json").string();
@@ -741,7 +750,7 @@ namespace estep
       if (largest_over_ranks(!start_error.empty()) != 0)
         {
           if (!start_error.empty())
-            std::cerr << ("estep: " + start_error + "\n");
+            std::cerr << ("estep: error: " + start_error + "\n");
           return exit_failed;
         }
       std::string preparation_error;
@@ -760,7 +769,8 @@ namespace estep
       if (largest_over_ranks(!preparation_error.empty()) != 0)
         {
           if (!preparation_error.empty())
-            std::cerr << ("estep: cannot prepare the output directory <" +
+            std::cerr << ("estep: error: cannot prepare the output "
+                          "directory <" +
                           directory.string() + ">: " + preparation_error +
                           "\n");
           return exit_failed;
@@ -795,7 +805,7 @@ namespace estep
 
       // Printed once the run starts, so that a refusal before stays one line.
       if (writes_output)
-        for (const std::string &warning : ignored)
+        for (const std::string &warning : warnings_about_input)
           std::cerr << ("estep: warning: " + warning + "\n");
       TimeLoopResult result = run_time_loop_with_signals(*integrator,
                                                          parameters,
@@ -825,11 +835,11 @@ namespace estep
           if (result.status != RunStatus::failed)
             throw;
           // The disk that failed the run may not take the summary either.
-          std::cerr << ("estep: " + std::string(error.what()) + "\n");
+          std::cerr << ("estep: error: " + std::string(error.what()) + "\n");
         }
 
-      std::cout << "estep: " << integrator->name() << " on the "
-                << problem.system->name() << ": " << to_string(result.status)
+      std::cout << "estep: " << integrator->name() << " on the " << problem.name
+                << ": " << to_string(result.status)
                 << " at t = " << result.final_time << " after "
                 << integrator->n_steps() << " steps in " << result.wall_seconds
                 << " s; output in " << directory.string() << "/\n";

@@ -489,7 +489,7 @@ namespace estep
     for (unsigned int b = 0; b < bodies.size(); ++b)
       add(std::to_string(b + 1));
     add("");
-    names.emplace_back("intersecting pairs");
+    names.emplace_back("intersecting_pairs");
     for (const auto &body : bodies)
       for (const std::string &name : body->observable_names())
         names.push_back(name);

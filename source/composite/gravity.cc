@@ -302,7 +302,7 @@ namespace estep
   Gravity::observable_names() const
   {
     std::vector<std::string> names = base_system->observable_names();
-    names.emplace_back("gravitational potential");
+    names.emplace_back("gravitational_potential");
     return names;
   }
 

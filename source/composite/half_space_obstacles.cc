@@ -611,7 +611,7 @@ namespace estep
   HalfSpaceObstacles::observable_names() const
   {
     std::vector<std::string> names = base_system->observable_names();
-    names.emplace_back("points behind obstacles");
+    names.emplace_back("points_behind_obstacles");
     return names;
   }
 

@@ -632,6 +632,21 @@ namespace estep
     tracked_points.emplace_back(name, closest_point(X));
   }
 
+  std::pair<std::array<double, 3>, std::array<double, 3>>
+  ElasticBody::reference_bounding_box() const
+  {
+    std::array<double, 3> lower, upper;
+    lower.fill(std::numeric_limits<double>::infinity());
+    upper.fill(-std::numeric_limits<double>::infinity());
+    for (unsigned int i = 0; i < data.n_points; ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          lower[c] = std::min(lower[c], data.reference_position[3 * i + c]);
+          upper[c] = std::max(upper[c], data.reference_position[3 * i + c]);
+        }
+    return {lower, upper};
+  }
+
   std::vector<std::string>
   ElasticBody::observable_names() const
   {

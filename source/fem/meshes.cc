@@ -120,13 +120,12 @@ namespace estep
   {
     AssertThrow(n_subdivisions > 0,
                 dealii::ExcMessage(
-                  "make_seed_cube_mesh: the number of subdivisions must be "
-                  "positive."));
+                  "the number of subdivisions must be positive."));
     for (unsigned int d = 0; d < 3; ++d)
       AssertThrow(upper[d] > lower[d],
                   dealii::ExcMessage(
-                    "make_seed_cube_mesh: the box is empty (upper corner "
-                    "not above the lower corner in every direction)."));
+                    "the box is empty (its upper corner is not above its "
+                    "lower corner in every direction)."));
     dealii::Triangulation<3, 3> hex;
     dealii::GridGenerator::subdivided_hyper_rectangle(
       hex,

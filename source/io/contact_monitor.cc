@@ -227,8 +227,7 @@ namespace estep
   {
     JsonObject result;
     result.add("largest number of intersecting face pairs", largest_pair_count)
-      .add("largest number of vertices inside obstacles",
-           largest_obstacle_count)
+      .add("largest number of points behind obstacles", largest_obstacle_count)
       .add("steps ending with intersecting face pairs", steps_with_pairs)
       .add("contact instants", n_contact_instants);
     if (n_contact_instants > 0)

@@ -50,7 +50,7 @@ namespace estep
       .add("estep version", ESTEP_VERSION)
       .add("status", status)
       .add("message", message)
-      .add("system", run.problem.system->name())
+      .add("system", run.problem.name)
       .add("method", run.integrator.name())
       .add("start time", run.start_time)
       .add("end time", run.end_time);
@@ -73,8 +73,8 @@ namespace estep
                     result.warnings.begin(),
                     result.warnings.end());
     warnings.insert(warnings.end(),
-                    run.ignored_settings.begin(),
-                    run.ignored_settings.end());
+                    run.input_warnings.begin(),
+                    run.input_warnings.end());
     summary.add("warnings", warnings);
     summary.add("problem", run.problem.description)
       .add("degrees of freedom", system.n_dofs())

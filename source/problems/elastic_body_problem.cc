@@ -132,11 +132,14 @@ namespace estep
           material.density),
         material.material,
         "elastic body");
-      body->track_point("tracked",
-                        parse_point(prm.get("Tracked point"),
-                                    "Elastic body/Tracked point"));
-
-      Problem problem;
+      Problem                     problem;
+      const std::array<double, 3> tracked =
+        parse_point(prm.get("Tracked point"), "Elastic body/Tracked point");
+      body->track_point("tracked", tracked);
+      if (const std::string warning =
+            tracked_point_warning(*body, "Elastic body/Tracked point", tracked);
+          !warning.empty())
+        problem.warnings.push_back(warning);
       problem.q0 = body->reference_configuration();
 
       prm.enter_subsection("Initial velocity");
@@ -171,10 +174,13 @@ namespace estep
                                 cells_held_on_each_rank({&body->cell_data()}));
       problem.system = std::move(body);
       // Entries that the chosen mesh type and velocity type do not read.
-      problem.ignored_settings = entries_unread_by_type(
+      const std::vector<std::string> unread = entries_unread_by_type(
         prm,
         {{"Elastic body/Mesh", MeshDescription::type_readers()},
          {"Elastic body/Initial velocity", initial_velocity_type_readers()}});
+      problem.warnings.insert(problem.warnings.end(),
+                              unread.begin(),
+                              unread.end());
       return problem;
     }
   } // namespace

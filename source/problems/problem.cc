@@ -1,8 +1,11 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/fem/elastic_body.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -61,6 +64,31 @@ namespace estep
 
 
 
+  std::string
+  tracked_point_warning(const ElasticBody           &body,
+                        const std::string           &entry,
+                        const std::array<double, 3> &X)
+  {
+    const auto [lower, upper] = body.reference_bounding_box();
+    double side = 0., outside = 0.;
+    for (unsigned int c = 0; c < 3; ++c)
+      {
+        side = std::max(side, upper[c] - lower[c]);
+        outside +=
+          std::pow(std::max({lower[c] - X[c], X[c] - upper[c], 0.}), 2);
+      }
+    outside = std::sqrt(outside);
+    if (!(outside > 0.25 * side))
+      return "";
+    std::ostringstream text;
+    text << entry << ": the point " << X[0] << ", " << X[1] << ", " << X[2]
+         << " lies " << outside << " outside the body's bounding box (sides up "
+         << "to " << side << "); the body's point nearest to it is tracked.";
+    return text.str();
+  }
+
+
+
   Problem
   create_problem(dealii::ParameterHandler &prm)
   {
@@ -76,6 +104,8 @@ namespace estep
       throw std::runtime_error(
         unread_subsection_text("", unread, "Problem/System = " + name) +
         "; a setting there would be ignored.");
-    return chosen.create(prm);
+    Problem problem = chosen.create(prm);
+    problem.name    = name;
+    return problem;
   }
 } // namespace estep

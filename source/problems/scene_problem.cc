@@ -306,6 +306,8 @@ namespace estep
       std::shared_ptr<const ElasticBody> body;
       Vector                             q0, v0;
       std::vector<unsigned int>          fixed_points;
+      /** Its tracked point's warning (tracked_point_warning()), or "". */
+      std::string tracked_point_warning;
     };
 
     /** The points of @p body at the vertices of its boundary faces with one
@@ -384,8 +386,11 @@ namespace estep
       if (const std::string tracked = prm.get("Tracked point");
           !tracked.empty())
         {
-          body->track_point("body" + std::to_string(b + 1),
-                            parse_point(tracked, section + "/Tracked point"));
+          const std::array<double, 3> point =
+            parse_point(tracked, section + "/Tracked point");
+          body->track_point("body" + std::to_string(b + 1), point);
+          result.tracked_point_warning =
+            tracked_point_warning(*body, section + "/Tracked point", point);
         }
 
       prm.enter_subsection("Initial displacement");
@@ -727,7 +732,14 @@ namespace estep
           typed.push_back(
             {section + "/Initial velocity", initial_velocity_type_readers()});
         }
-      problem.ignored_settings = entries_unread_by_type(prm, typed);
+      for (const SceneBody &b : bodies)
+        if (!b.tracked_point_warning.empty())
+          problem.warnings.push_back(b.tracked_point_warning);
+      const std::vector<std::string> unread =
+        entries_unread_by_type(prm, typed);
+      problem.warnings.insert(problem.warnings.end(),
+                              unread.begin(),
+                              unread.end());
       return problem;
     }
   } // namespace

@@ -211,6 +211,14 @@ expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected e
 expect 1 "Elastic body/Initial velocity/Function expression: <sqrt\(-1\); 0; 0> is -?nan at the point \([-0-9.e+, ]+\) \(component 0\)\.$" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 expect 1 "Elastic body/Mesh: the deal.II generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
 expect 1 "Function expression: <1; 2> cannot be evaluated: The number of components \(3\) is not equal to the number of expressions \(2\)" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=1; 2"
+# Warnings about the input, which let the run go on: a tracked point far from its body, more
+# threads than cores; and the system named as Problem/System names it.
+expect 0 "estep: warning: Elastic body/Tracked point: the point 5, 5, 5 lies 6.9282 outside the body's bounding box \(sides up to 1\); the body's point nearest to it is tracked\.$" -- "${cube[@]}" -s "Elastic body/Tracked point=5,5,5" -s "Output directory=warned"
+grep -q '"warnings": \["Elastic body/Tracked point: the point 5, 5, 5' warned/summary.json || fail "the tracked point's warning is not in summary.json"
+expect 0 "estep: warning: Threads: 1000 threads on a machine of [0-9]+ cores" -- "${cube[@]}" --threads 1000
+! grep -q "Tracked point" <("$ESTEP" "${cube[@]}" -s "Elastic body/Tracked point=0.5, 1.2, 1" 2>&1) || fail "a warning for a tracked point just off the body"
+expect 0 "energy stepping on the argon cluster: completed" -- "$ESTEP_SOURCE_DIR/parameter_files/argon_cluster.prm" -s "Time integration/End time=1" -s "Output directory=argon"
+grep -q '"system": "argon cluster"' argon/summary.json || fail "summary.json does not name the argon cluster as Problem/System does"
 # Ball meshes: a mesh size that would make too many tetrahedra, or none (gmsh's message).
 expect 1 "Elastic body/Mesh: the mesh size 1e-09 \(relative to the radius\) would make a ball of about 2.4246e\+28 tetrahedra, more than 1e\+08; it must be at least 0.00623563\.$" -- "${cube[@]}" -s "Elastic body/Mesh/Type=ball" -s "Elastic body/Mesh/Mesh size=1e-9"
 balls=("$ESTEP_SOURCE_DIR/parameter_files/ball_collision.prm" -s "Postprocessors/List=history, contact monitor")

@@ -243,11 +243,11 @@ mkdir broken/checkpoint.bin.part
 wait $pid
 code=$?
 ((code == 4)) || fail "a failed output on 2 processes: exit code $code, not 4: $(tail -3 broken.txt)"
-grep -q "^estep: Writing the checkpoint <broken/checkpoint.bin.part> failed" broken.txt ||
+grep -q "^estep: error: Writing the checkpoint <broken/checkpoint.bin.part> failed" broken.txt ||
   fail "a failed output on 2 processes is not reported: $(head -3 broken.txt)"
 grep -q '"status": "failed"' broken/summary.json ||
   fail "a failed output on 2 processes: summary.json does not say failed"
-((code == 4)) && echo "failed output: exit code 4, $(grep -c '^estep: Writing the checkpoint' broken.txt) report"
+((code == 4)) && echo "failed output: exit code 4, $(grep -c '^estep: error: Writing the checkpoint' broken.txt) report"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {

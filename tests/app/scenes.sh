@@ -145,7 +145,7 @@ s = json.load(open("drop/summary.json"))
 rows = history("drop")
 expect(s["status"] == "completed", f"drop: status {s['status']}")
 expect(s["energies"]["terraced energy drift"] < 1e-12, f"drop: drift {s['energies']['terraced energy drift']}")
-expect(max(int(float(r["points behind obstacles"])) for r in rows) == 0, "drop: a vertex behind the floor")
+expect(max(int(float(r["points_behind_obstacles"])) for r in rows) == 0, "drop: a vertex behind the floor")
 c = s["contact"]
 falling = [r for r in rows if float(r["time"]) < c["first contact instant"]]
 worst = max(abs(float(r["V1_z"]) - (-0.1 - 9.81 * float(r["time"]))) for r in falling)
@@ -188,11 +188,11 @@ expect(abs(ratio - 1) < 0.05, f"cantilever: periods {periods}")
 print(f"cantilever: period {periods['cantilever']:.4f} (Newmark {periods['cantilever_newmark']:.4f})")
 
 s = json.load(open("bar/summary.json"))
-expect(max(int(float(r["points behind obstacles"])) for r in history("bar")) == 0, "bar: a vertex behind the wall")
+expect(max(int(float(r["points_behind_obstacles"])) for r in history("bar")) == 0, "bar: a vertex behind the wall")
 duration, estimate = s["contact"]["contact duration"], 2 * 1 / (1000 ** 0.5)
 expect(abs(duration / estimate - 1) < 0.15, f"bar: contact {duration}, 2L/c = {estimate}")
 p = json.load(open("bar_penalty/summary.json"))["contact"]
-behind = p["largest number of vertices inside obstacles"]
+behind = p["largest number of points behind obstacles"]
 expect(behind > 0, "bar, penalty: no vertex entered the wall")
 expect(abs(p["contact duration"] / estimate - 1) < 0.15, f"bar, penalty: contact {p['contact duration']}")
 print(f"bar: contact {duration:.4f} (2L/c {estimate:.4f}); penalty: contact {p['contact duration']:.4f}, "

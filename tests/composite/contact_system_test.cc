@@ -480,7 +480,7 @@ TEST(ContactSystem, ObservablesOfRigidMotions)
   EXPECT_EQ(names[0], "V1_x");
   EXPECT_EQ(names[9], "Omega2_x");
   EXPECT_EQ(names[12], "V_x");
-  EXPECT_EQ(names[18], "intersecting pairs");
+  EXPECT_EQ(names[18], "intersecting_pairs");
   EXPECT_NEAR(values[0], 1., 1e-13);
   EXPECT_NEAR(values[1], 2., 1e-13);
   EXPECT_NEAR(values[2], 3., 1e-13);

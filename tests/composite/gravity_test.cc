@@ -231,7 +231,7 @@ TEST(Gravity, WeightsAndRejectedArguments)
   const auto values = system.observables(q, q);
   ASSERT_EQ(names.size(), body.observable_names().size() + 1);
   ASSERT_EQ(values.size(), names.size());
-  EXPECT_EQ(names.back(), "gravitational potential");
+  EXPECT_EQ(names.back(), "gravitational_potential");
   EXPECT_EQ(values.back(), system.gravitational_potential(q));
   // Forwarded: mass, layout, Hessian.
   EXPECT_EQ(&system.inverse_mass(), &body.inverse_mass());

@@ -476,7 +476,7 @@ TEST(HalfSpaceObstacles, RejectsBadInput)
                              Mode::impenetrability);
   EXPECT_NEAR(o.half_spaces()[0].normal[1], 0.6, 1e-16);
   EXPECT_EQ(o.points(), (std::vector<unsigned int>{0, 1}));
-  EXPECT_EQ(o.observable_names().back(), "points behind obstacles");
+  EXPECT_EQ(o.observable_names().back(), "points_behind_obstacles");
 }
 
 

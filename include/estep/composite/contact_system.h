@@ -132,7 +132,7 @@ namespace estep
      * For each body b = 1, 2, ...: "V<b>_x", "V<b>_y", "V<b>_z" (centre-of-mass
      * velocity) and "Omega<b>_x", ... (angular momentum about its centre of
      * mass / its mass); then "V_x", ..., "Omega_x", ... of the whole system
-     * (about the system's centre of mass), "intersecting pairs" (number
+     * (about the system's centre of mass), "intersecting_pairs" (number
      * of intersecting pairs of boundary triangles, exact test), and the
      * bodies' own observables (e.g. tracked points).
      */

@@ -27,7 +27,7 @@ namespace estep
    * - gradient(): the base's minus w. The Hessian is the base's (inherited).
    * - free_flight(): the base's flight plus c0 + c1 s, c0 = -w . q and c1 =
    *   -w . v (both compensated); see there.
-   * - observables: the base's, then "gravitational potential" (the linear
+   * - observables: the base's, then "gravitational_potential" (the linear
    *   term alone, gravitational_potential()).
    *
    * A point of infinite mass (inverse mass 0) has no weight in a component
@@ -95,7 +95,7 @@ namespace estep
     std::unique_ptr<FreeFlight>
     free_flight(const Vector &q, const Vector &v) const override;
 
-    /** The base's names, then "gravitational potential". */
+    /** The base's names, then "gravitational_potential". */
     std::vector<std::string>
     observable_names() const override;
 

@@ -155,7 +155,7 @@ namespace estep
     std::string
     penetration(const Vector &q) const override;
 
-    /** The base's names and "points behind obstacles". */
+    /** The base's names and "points_behind_obstacles". */
     std::vector<std::string>
     observable_names() const override;
 

@@ -218,6 +218,11 @@ namespace estep
     void
     track_point(const std::string &name, const std::array<double, 3> &X);
 
+    /** The lower and upper corners of the smallest box with faces normal to
+     * the axes that holds the reference configuration. */
+    std::pair<std::array<double, 3>, std::array<double, 3>>
+    reference_bounding_box() const;
+
     /** The tracked points' current coordinates: "<name>_x", "<name>_y", ... */
     std::vector<std::string>
     observable_names() const override;

@@ -18,8 +18,9 @@ namespace estep
     const TimeIntegrator                              &integrator;
     const std::vector<std::unique_ptr<Postprocessor>> &postprocessors;
     double                                             start_time, end_time;
-    /** Settings of the input that the run ignores (each a sentence). */
-    const std::vector<std::string> &ignored_settings;
+    /** Warnings about the input (each a sentence): settings the run
+     * ignores, a tracked point far from its body, more threads than cores. */
+    const std::vector<std::string> &input_warnings;
   };
 
   /**

@@ -5,6 +5,7 @@
 #include <estep/base/plugin_registry.h>
 #include <estep/systems/mechanical_system.h>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -13,12 +14,17 @@
 
 namespace estep
 {
+  class ElasticBody;
+
   /**
    * A mechanical system with its initial state, as a parameter file describes
    * it: what a problem plugin creates.
    */
   struct Problem
   {
+    /** The name it was chosen by (Problem/System), which the summary and the
+     * terminal give; set by create_problem(). */
+    std::string                       name;
     std::unique_ptr<MechanicalSystem> system;
     Vector                            q0, v0;
     /** What the summary should say about the problem (units, counts, ...). */
@@ -28,9 +34,10 @@ namespace estep
      * supports, obstacle surfaces, connectivity); 0 for none. A checkpoint
      * keeps it with q0's and v0's: a resume on changed files is refused. */
     std::uint64_t geometry_checksum = 0;
-    /** Settings of the input that the problem does not read (sentences for
-     * warnings, see entries_unread_by_type()). */
-    std::vector<std::string> ignored_settings;
+    /** Warnings about the input, one sentence each: settings the problem
+     * does not read (entries_unread_by_type()), a tracked point far from its
+     * body (tracked_point_warning()). */
+    std::vector<std::string> warnings;
   };
 
   /**
@@ -67,6 +74,16 @@ namespace estep
    */
   void
   declare_material_subsection(dealii::ParameterHandler &prm);
+
+  /** The warning for `entry` = @p X, a point of @p body to track, if it lies
+   * outside the body's bounding box by more than a quarter of the box's
+   * largest side: it is likely a mistake (a point in other units, or of
+   * another body), and the body's point nearest to it is tracked. ""
+   * otherwise. */
+  std::string
+  tracked_point_warning(const ElasticBody           &body,
+                        const std::string           &entry,
+                        const std::array<double, 3> &X);
 
   /** Build the problem chosen in `Problem/System`. Throws if a top-level
    * subsection that only the other problems read is not at its defaults
