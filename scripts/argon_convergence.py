@@ -157,8 +157,8 @@ def main():
         start = ONE_NS - 50e3 / TAU_FS
         history = [r for r in history if float(r["time"]) >= start]
         for atom in range(7):
-            axis.plot([float(r[f"x{atom}"]) * sigma_nm for r in history],
-                      [float(r[f"y{atom}"]) * sigma_nm for r in history], lw=0.5)
+            axis.plot([float(r[f"x{atom + 1}"]) * sigma_nm for r in history],
+                      [float(r[f"y{atom + 1}"]) * sigma_nm for r in history], lw=0.5)
         axis.set_aspect("equal")
         axis.set_title(title, fontsize=10)
         axis.set_xlabel("x [nm]")

@@ -237,7 +237,7 @@ namespace estep
     const char               axes[] = {'x', 'y', 'z'};
     for (unsigned int i = 0; i < n_particles; ++i)
       for (unsigned int c = 0; c < dim; ++c)
-        names.push_back(std::string(1, axes[c]) + std::to_string(i));
+        names.push_back(std::string(1, axes[c]) + std::to_string(i + 1));
     return names;
   }
 

@@ -55,7 +55,8 @@ namespace estep
     std::unique_ptr<FreeFlight>
     free_flight(const Vector &q, const Vector &v) const override;
 
-    /** The particle positions x0, y0, (z0,) x1, ... */
+    /** The particle positions x1, y1, (z1,) x2, ..., numbered from 1 as the
+     * bodies of a scene are. */
     std::vector<std::string>
     observable_names() const override;
 
