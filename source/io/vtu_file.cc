@@ -1,7 +1,10 @@
+#include <estep/base/parallel_blocks.h>
 #include <estep/io/vtu_file.h>
 
 #include <zlib.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -113,26 +116,45 @@ namespace estep
   {
     if (n_bytes > 0xffffffffu)
       throw std::length_error("VtuFile: a data array exceeds 4 GB.");
-    uLongf                     compressed_size = compressBound(n_bytes);
-    std::vector<unsigned char> compressed(compressed_size);
-    if (compress2(compressed.data(),
-                  &compressed_size,
-                  static_cast<const Bytef *>(data),
-                  n_bytes,
-                  Z_BEST_SPEED) != Z_OK)
+    // Blocks of compression_block_size bytes (the last one shorter; one
+    // empty block for no data), compressed each on its own, on the threads:
+    // the bytes depend on the block size alone.
+    const auto        *bytes = static_cast<const Bytef *>(data);
+    const std::size_t  block = compression_block_size;
+    const unsigned int n =
+      std::max<std::size_t>(1, (n_bytes + block - 1) / block);
+    std::vector<std::vector<unsigned char>> compressed(n);
+    std::vector<std::uint32_t>              header = {
+                   n,
+                   std::uint32_t(std::min(n_bytes, block)),
+                   std::uint32_t(n_bytes - (n - 1) * block)};
+    header.resize(3 + n);
+    std::atomic<bool> failed = false;
+    for_each_block(n, [&](const unsigned int k) {
+      const std::size_t begin = k * block;
+      const std::size_t count = std::min(n_bytes - begin, block);
+      uLongf            size  = compressBound(count);
+      compressed[k].resize(size);
+      if (compress2(
+            compressed[k].data(), &size, bytes + begin, count, Z_BEST_SPEED) !=
+          Z_OK)
+        failed = true;
+      compressed[k].resize(size);
+      header[3 + k] = std::uint32_t(size);
+    });
+    if (failed)
       throw std::runtime_error("VtuFile: zlib compression failed.");
-    // VTK's header of compressed data: the number of blocks, the size of a
-    // block, the size of the last block and the compressed size of each
-    // block; it is encoded separately from the data.
-    const std::uint32_t header[4] = {1u,
-                                     std::uint32_t(n_bytes),
-                                     std::uint32_t(n_bytes),
-                                     std::uint32_t(compressed_size)};
-    std::string         encoded;
-    append_base64(reinterpret_cast<const unsigned char *>(header),
-                  sizeof(header),
+    // VTK's header of compressed data (the number of blocks, the size of a
+    // block, the size of the last block and the compressed size of each) is
+    // encoded separately from the data, the blocks one after the other.
+    std::vector<unsigned char> joined;
+    for (const std::vector<unsigned char> &part : compressed)
+      joined.insert(joined.end(), part.begin(), part.end());
+    std::string encoded;
+    append_base64(reinterpret_cast<const unsigned char *>(header.data()),
+                  header.size() * sizeof(std::uint32_t),
                   encoded);
-    append_base64(compressed.data(), compressed_size, encoded);
+    append_base64(joined.data(), joined.size(), encoded);
     return encoded;
   }
 

@@ -74,17 +74,26 @@ import os
 if not os.path.exists("es/solution.pvd") or not os.path.exists("es/fields/solution-00002.vtu"):
     bad.append("no field output")
 else:
-    # The first snapshot decoded with the standard library (base64, zlib; VTK's header of
-    # compressed arrays: blocks, block size, last block size, compressed sizes): vertex fields
+    # The first snapshot decoded with the standard library (base64, zlib): vertex fields
     # on the 2,969 shared vertices, the rigid rotation's velocity w x (X - c), J = 1.
     import base64, re, struct, zlib
+    def vtk_decode(encoded):
+        # VTK's compressed binary: a base64 header (blocks, block size, last block size, the
+        # compressed size of each block), then the zlib blocks one after the other, in base64.
+        blocks = struct.unpack("<I", base64.b64decode(encoded[:8])[:4])[0]
+        header_chars = 4 * ((4 * (3 + blocks) + 2) // 3)
+        sizes = struct.unpack("<%dI" % (3 + blocks), base64.b64decode(encoded[:header_chars]))[3:]
+        data, raw, at = base64.b64decode(encoded[header_chars:]), b"", 0
+        for size in sizes:
+            raw += zlib.decompress(data[at:at + size])
+            at += size
+        return raw
     text = open("es/fields/solution-00000.vtu").read()
     def array(name):
         m = re.search(r'<DataArray type="(\w+)"' + (f' Name="{name}"' if name else "") +
                       r'[^>]*format="binary">\s*(\S+)\s*</DataArray>', text)
         kind, encoded = m.group(1), m.group(2)
-        nblocks, _, _, size = struct.unpack("<4I", base64.b64decode(encoded[:24]))
-        raw = zlib.decompress(base64.b64decode(encoded[24:]))
+        raw = vtk_decode(encoded)
         code = {"Float32": "f", "Int32": "i", "UInt8": "B"}[kind]
         return struct.unpack("<%d%s" % (len(raw) // struct.calcsize(code), code), raw)
     n = re.search(r'NumberOfPoints="(\d+)" NumberOfCells="(\d+)"', text)

@@ -72,8 +72,12 @@ namespace estep
     write_series(std::ostream                                      &out,
                  const std::vector<std::pair<double, std::string>> &snapshots);
 
-    /** The encoding of a data array: zlib (level 1) and base64, with VTK's
-     * block header. */
+    /** The bytes of a data array compressed in one zlib block. */
+    static constexpr unsigned int compression_block_size = 1u << 16;
+
+    /** The encoding of a data array: zlib (level 1) in blocks of
+     * compression_block_size bytes, compressed side by side on the threads,
+     * and base64, with VTK's block header. */
     static std::string
     encode(const void *data, const std::size_t n_bytes);
 
