@@ -1,10 +1,15 @@
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/fem/distributed_cell_data.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -12,6 +17,176 @@
 
 namespace estep
 {
+  namespace
+  {
+    /**
+     * Into @p tria, the cells of @p data (which holds every cell) as it
+     * numbers them: vertex i is point i, coarse cell e is cell e.
+     */
+    void
+    triangulation_of_cells(const P1CellData            &data,
+                           dealii::Triangulation<3, 3> &tria)
+    {
+      std::vector<dealii::Point<3>> vertices(data.n_points);
+      for (unsigned int p = 0; p < data.n_points; ++p)
+        for (unsigned int c = 0; c < 3; ++c)
+          vertices[p][c] = data.reference_position[3 * p + c];
+      std::vector<dealii::CellData<3>> cells(data.n_cells,
+                                             dealii::CellData<3>(4));
+      for (unsigned int e = 0; e < data.n_cells; ++e)
+        for (unsigned int a = 0; a < 4; ++a)
+          cells[e].vertices[a] = data.point[a][data.at(e)];
+      tria.create_triangulation(vertices, cells, dealii::SubCellData());
+    }
+
+    /**
+     * The subdomain of each cell of @p tria (of one level, whose coarse cell
+     * e is cell e of @p data): the rank that computes its block
+     * (block_ranks()).
+     */
+    void
+    partition_by_blocks(const P1CellData            &data,
+                        dealii::Triangulation<3, 3> &tria)
+    {
+      AssertThrow(tria.n_levels() == 1 && tria.n_active_cells() == data.n_cells,
+                  dealii::ExcInternalError());
+      const std::vector<unsigned int> block_rank =
+        block_ranks(n_blocks(data.n_padded_cells()));
+      for (const auto &cell : tria.active_cell_iterators())
+        cell->set_subdomain_id(block_rank[cell->index() / block_size]);
+    }
+
+    /**
+     * deal.II's description of the cells of rank @p rank in @p tria (the
+     * cells of @p data, partitioned by partition_by_blocks()): its own and
+     * the cells that share a vertex with them, each a coarse cell whose id is
+     * its number in @p data; packed for sending. The point of each of its
+     * vertices into @p points.
+     */
+    std::vector<char>
+    packed_description_for_rank(const dealii::Triangulation<3, 3> &tria,
+                                const P1CellData                  &data,
+                                const unsigned int                 rank,
+                                std::vector<unsigned int>         &points)
+    {
+      const auto description = dealii::TriangulationDescription::Utilities::
+        create_description_from_triangulation(
+          tria,
+          MPI_COMM_WORLD,
+          dealii::TriangulationDescription::Settings::default_setting,
+          rank);
+      constexpr unsigned int unset = -1;
+      points.assign(description.coarse_cell_vertices.size(), unset);
+      for (std::size_t i = 0; i < description.coarse_cells.size(); ++i)
+        {
+          const unsigned int e =
+            description.coarse_cell_index_to_coarse_cell_id[i];
+          for (unsigned int a = 0; a < 4; ++a)
+            points[description.coarse_cells[i].vertices[a]] =
+              data.point[a][data.at(e)];
+        }
+      AssertThrow(std::find(points.begin(), points.end(), unset) ==
+                    points.end(),
+                  dealii::ExcInternalError());
+      return dealii::Utilities::pack(description, false);
+    }
+
+    /**
+     * The per-cell arrays of @p data for the chunks @p chunks, from the cells
+     * of the distributed mesh @p tria (coarse cell id: the cell's number;
+     * @p point_of_vertex: the point of each vertex). The held cells that
+     * @p tria does not have (beyond the layer of cells around this rank's)
+     * are only ever read by the gradient, for points of other ranks, and
+     * become inert stand-ins: copies of a cell that it has, with volume 0,
+     * whose forces are zeros (the sums they are added to start at +0 and so
+     * never are -0: adding a zero changes no bit). The padding after the last
+     * cell copies it, as in make_p1_cell_data(). Throws if a cell this rank
+     * computes, or one of the cells of a point whose gradient it computes, is
+     * missing.
+     */
+    void
+    take_held_cells(const dealii::Triangulation<3, 3> &tria,
+                    const std::vector<unsigned int>   &point_of_vertex,
+                    const std::vector<unsigned int>   &chunks,
+                    P1CellData                        &data)
+    {
+      data.hold_chunks(chunks);
+      unsigned int n_held = 0;
+      for (const unsigned int c : chunks)
+        n_held += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+      data.for_each_cell_array([&](auto &v) { v.assign(n_held, {}); });
+      std::vector<bool> present(n_held, false);
+      // The mass of the cells of each point on this rank, to check that
+      // those of the points it computes are all here.
+      std::vector<double> mass(data.n_points, 0.);
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          if (cell->is_artificial())
+            continue;
+          const unsigned int e = cell->id().get_coarse_cell_id();
+          AssertThrow(e < data.n_cells, dealii::ExcInternalError());
+          if (data.chunk_start[e / P1CellData::gradient_chunk] ==
+              P1CellData::not_held)
+            continue;
+          const unsigned int                   h = data.at(e);
+          std::array<std::array<double, 3>, 4> x;
+          for (unsigned int a = 0; a < 4; ++a)
+            {
+              const unsigned int p = point_of_vertex[cell->vertex_index(a)];
+              data.point[a][h]     = p;
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  x[a][i] = cell->vertex(a)[i];
+                  AssertThrow(x[a][i] == data.reference_position[3 * p + i],
+                              dealii::ExcMessage(
+                                "The distributed mesh's vertices do not "
+                                "match the points of the body."));
+                }
+            }
+          set_cell_geometry(data, h, x);
+          present[h] = true;
+          for (unsigned int a = 0; a < 4; ++a)
+            mass[data.point[a][h]] += data.density * data.volume[h] / 4.;
+        }
+
+      // The stand-ins, each a copy of the present cell before it (or, for
+      // the first ones, after it).
+      unsigned int source = n_held;
+      for (unsigned int h = 0; h < n_held && source == n_held; ++h)
+        if (present[h])
+          source = h;
+      for (unsigned int h = 0; h < n_held; ++h)
+        if (present[h])
+          source = h;
+        else
+          {
+            for (auto &v : data.point)
+              v[h] = v[source];
+            for (auto &v : data.shape_gradient)
+              v[h] = v[source];
+            data.volume[h] = 0.;
+          }
+
+      const BlockRange mine =
+        rank_cells(data.n_padded_cells(), this_rank());
+      for (unsigned int e = mine.begin; e < std::min(mine.end, data.n_cells);
+           ++e)
+        AssertThrow(present[data.at(e)],
+                    dealii::ExcMessage("The distributed mesh lacks cell " +
+                                       std::to_string(e) + " of this rank."));
+      for (unsigned int p = 0; p < data.n_points; ++p)
+        if (data.first_cell[p] >= mine.begin && data.first_cell[p] < mine.end)
+          AssertThrow(std::abs(mass[p] - data.lumped_mass[p]) <=
+                        1e-8 * data.lumped_mass[p],
+                      dealii::ExcMessage(
+                        "The distributed mesh lacks cells of point " +
+                        std::to_string(p) + ", whose gradient this rank "
+                                            "computes."));
+    }
+  } // namespace
+
+
+
   std::vector<std::vector<unsigned int>>
   chunks_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
   {
@@ -45,13 +220,12 @@ namespace estep
     const std::function<void(dealii::Triangulation<3, 3> &)> &make_mesh,
     const double                                              density)
   {
-    const auto make = [&]() {
-      dealii::Triangulation<3, 3> tria;
-      make_mesh(tria);
-      return make_p1_cell_data(tria, density);
-    };
+    dealii::Triangulation<3, 3> mesh;
     if (rank_count() == 1)
-      return make();
+      {
+        make_mesh(mesh);
+        return make_p1_cell_data(mesh, density);
+      }
 
     // What the first rank meets, every rank throws.
     P1CellData         data;
@@ -61,7 +235,8 @@ namespace estep
       {
         try
           {
-            data = make();
+            make_mesh(mesh);
+            data = make_p1_cell_data(mesh, density);
           }
         catch (const std::exception &e)
           {
@@ -97,40 +272,68 @@ namespace estep
     broadcast_from_first_rank(data.boundary_triangle);
     broadcast_from_first_rank(data.boundary_id);
 
-    // The cells: to each rank the chunks it holds, one rank after the other.
+    // The cells: each rank's from a parallel::fullydistributed::Triangulation
+    // of its cells and their ghost layer, which deal.II builds from the
+    // description the first rank makes of its serial mesh for it.
+    std::vector<unsigned int> chunks, point_of_vertex;
+    std::vector<char>         description;
     if (this_rank() == 0)
       {
         const std::vector<std::vector<unsigned int>> held =
           chunks_held_by_ranks(data, rank_count());
-        const auto part_of = [&](const auto &v, const unsigned int r) {
-          std::decay_t<decltype(v)> part;
-          for (const unsigned int c : held[r])
-            {
-              const BlockRange cells = data.chunk_cells(c);
-              part.insert(part.end(),
-                          v.begin() + cells.begin,
-                          v.begin() + cells.end);
-            }
-          return part;
-        };
-        for (unsigned int r = 1; r < held.size(); ++r)
+        // A mesh of one level is described as it is (its coarse cells are
+        // the cells); a refined one is first flattened.
+        if (mesh.n_levels() > 1)
           {
-            send_from_first_rank(r, held[r].data(), held[r].size());
-            data.for_each_cell_array([&](const auto &v) {
-              const auto part = part_of(v, r);
-              send_from_first_rank(r, part.data(), part.size());
-            });
+            mesh.clear();
+            triangulation_of_cells(data, mesh);
           }
-        data.for_each_cell_array([&](auto &v) { part_of(v, 0).swap(v); });
-        data.hold_chunks(held[0]);
+        partition_by_blocks(data, mesh);
+        for (unsigned int r = rank_count(); r-- > 0;)
+          {
+            std::vector<unsigned int> points;
+            std::vector<char>         bytes =
+              packed_description_for_rank(mesh, data, r, points);
+            if (r == 0)
+              {
+                chunks = held[0];
+                description.swap(bytes);
+                point_of_vertex.swap(points);
+                mesh.clear();
+                break;
+              }
+            send_from_first_rank(r, held[r].data(), held[r].size());
+            send_from_first_rank(r, bytes.data(), bytes.size());
+            send_from_first_rank(r, points.data(), points.size());
+          }
       }
     else
       {
-        std::vector<unsigned int> chunks;
         receive_from_first_rank(chunks);
-        data.for_each_cell_array([](auto &v) { receive_from_first_rank(v); });
-        data.hold_chunks(chunks);
+        receive_from_first_rank(description);
+        receive_from_first_rank(point_of_vertex);
       }
+    auto unpacked = dealii::Utilities::unpack<
+      dealii::TriangulationDescription::Description<3, 3>>(description, false);
+    unpacked.comm = MPI_COMM_WORLD;
+    dealii::parallel::fullydistributed::Triangulation<3, 3> tria(
+      MPI_COMM_WORLD);
+    tria.create_triangulation(unpacked);
+    // What one rank meets, every rank throws.
+    std::string problem;
+    try
+      {
+        take_held_cells(tria, point_of_vertex, chunks, data);
+      }
+    catch (const std::exception &e)
+      {
+        problem = one_line_message(e);
+      }
+    if (largest_over_ranks(!problem.empty()))
+      throw std::runtime_error(problem.empty() ?
+                                 "another process could not take its cells "
+                                 "from the distributed mesh" :
+                                 problem);
     return data;
   }
 

@@ -62,6 +62,24 @@ namespace estep
 
 
 
+  void
+  set_cell_geometry(P1CellData                                 &data,
+                    const unsigned int                          h,
+                    const std::array<std::array<double, 3>, 4> &x)
+  {
+    dealii::Tensor<2, 3> Dm;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int i = 0; i < 3; ++i)
+        Dm[i][a] = x[a + 1][i] - x[0][i];
+    data.volume[h]               = dealii::determinant(Dm) / 6.;
+    const dealii::Tensor<2, 3> B = dealii::invert(Dm);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int j = 0; j < 3; ++j)
+        data.shape_gradient[3 * a + j][h] = B[a][j];
+  }
+
+
+
   P1CellData
   make_p1_cell_data(const dealii::Triangulation<3, 3> &tria,
                     const double                       density)
@@ -114,16 +132,11 @@ namespace estep
             point_of_vertex[cell->vertex_index(a)] = p;
             data.first_cell[p] = std::min(data.first_cell[p], e);
           }
-        dealii::Tensor<2, 3> Dm;
-        for (unsigned int a = 0; a < 3; ++a)
+        std::array<std::array<double, 3>, 4> x;
+        for (unsigned int a = 0; a < 4; ++a)
           for (unsigned int i = 0; i < 3; ++i)
-            Dm[i][a] = cell->vertex(a + 1)[i] - cell->vertex(0)[i];
-        const double det             = dealii::determinant(Dm);
-        data.volume[e]               = det / 6.;
-        const dealii::Tensor<2, 3> B = dealii::invert(Dm);
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int j = 0; j < 3; ++j)
-            data.shape_gradient[3 * a + j][e] = B[a][j];
+            x[a][i] = cell->vertex(a)[i];
+        set_cell_geometry(data, e, x);
         data.total_volume += data.volume[e];
       }
     // The padding of the last batch of four cells: copies of the last cell

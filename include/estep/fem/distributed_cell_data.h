@@ -10,9 +10,11 @@
 /**
  * @file
  * The P1CellData of a body in a run on several MPI ranks
- * (distributed_blocks.h): the first rank alone builds the mesh and the
- * arrays; every rank receives the per-point arrays and the boundary whole,
- * and of the per-cell arrays only the cells it computes.
+ * (distributed_blocks.h): the first rank alone builds the serial mesh and
+ * its per-point arrays, which every rank receives whole with the boundary;
+ * each rank takes its cells from a
+ * dealii::parallel::fullydistributed::Triangulation of its own cells and
+ * their ghost layer, built from deal.II's description of the serial mesh.
  */
 
 namespace estep
@@ -30,12 +32,20 @@ namespace estep
 
   /**
    * make_p1_cell_data() of the mesh that @p make_mesh builds, of which every
-   * rank receives its part: only the first rank builds the mesh and the
-   * arrays, and sends each rank the per-point arrays and the boundary, and
-   * the per-cell arrays of the chunks chunks_held_by_ranks() gives it. So no
-   * other rank ever holds a deal.II mesh of the whole body or every cell's
-   * data. What the first rank throws, every rank throws, with the same
-   * message. On one rank, simply make_p1_cell_data(). Collective.
+   * rank holds its part. Only the first rank builds the mesh and the arrays;
+   * it sends each rank the per-point arrays and the boundary, and deal.II's
+   * description (TriangulationDescription) of the rank's cells, those of its
+   * blocks, and their ghost layer, from a triangulation of the cells as
+   * P1CellData numbers them, partitioned by blocks (block_ranks()). Each rank
+   * builds a dealii::parallel::fullydistributed::Triangulation from it and
+   * computes the per-cell arrays of the chunks chunks_held_by_ranks() gives
+   * it from that mesh's cells; the cells of those chunks beyond the ghost
+   * layer, which only the gradient reads for points of other ranks, are
+   * inert stand-ins of volume 0. So no other rank ever holds a deal.II mesh
+   * of the whole body or every cell's data, and the arrays hold the same bits
+   * as make_p1_cell_data()'s. What the first rank throws, every rank throws,
+   * with the same message. On one rank, simply make_p1_cell_data().
+   * Collective.
    */
   P1CellData
   make_p1_cell_data_on_first_rank(

@@ -174,6 +174,18 @@ namespace estep
 
 
   /**
+   * The geometry of a cell with vertices @p x (reference positions, in
+   * deal.II's vertex order) into entry @p h of the per-cell arrays of
+   * @p data: shape_gradient from B = D_m^{-1} and volume det D_m / 6 (the
+   * points are the caller's). The one formula for every way the arrays are
+   * made, so that they hold the same bits.
+   */
+  void
+  set_cell_geometry(P1CellData                                 &data,
+                    const unsigned int                          h,
+                    const std::array<std::array<double, 3>, 4> &x);
+
+  /**
    * The P1CellData of the tetrahedral mesh @p tria, of mass density
    * @p density: the geometry from the vertices, the lumped mass from deal.II
    * (FE_SimplexP, QGaussSimplex, MappingFE), checked against the geometry.
