@@ -316,6 +316,7 @@ namespace estep
     auto unpacked = dealii::Utilities::unpack<
       dealii::TriangulationDescription::Description<3, 3>>(description, false);
     unpacked.comm = MPI_COMM_WORLD;
+    std::vector<char>().swap(description);
     dealii::parallel::fullydistributed::Triangulation<3, 3> tria(
       MPI_COMM_WORLD);
     tria.create_triangulation(unpacked);
