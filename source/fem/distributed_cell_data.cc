@@ -167,8 +167,7 @@ namespace estep
             data.volume[h] = 0.;
           }
 
-      const BlockRange mine =
-        rank_cells(data.n_padded_cells(), this_rank());
+      const BlockRange mine = rank_cells(data.n_padded_cells(), this_rank());
       for (unsigned int e = mine.begin; e < std::min(mine.end, data.n_cells);
            ++e)
         AssertThrow(present[data.at(e)],
@@ -180,8 +179,9 @@ namespace estep
                         1e-8 * data.lumped_mass[p],
                       dealii::ExcMessage(
                         "The distributed mesh lacks cells of point " +
-                        std::to_string(p) + ", whose gradient this rank "
-                                            "computes."));
+                        std::to_string(p) +
+                        ", whose gradient this rank "
+                        "computes."));
     }
   } // namespace
 
