@@ -20,29 +20,10 @@ namespace estep
   namespace
   {
     /**
-     * Into @p tria, the cells of @p data (which holds every cell) as it
-     * numbers them: vertex i is point i, coarse cell e is cell e.
-     */
-    void
-    triangulation_of_cells(const P1CellData            &data,
-                           dealii::Triangulation<3, 3> &tria)
-    {
-      std::vector<dealii::Point<3>> vertices(data.n_points);
-      for (unsigned int p = 0; p < data.n_points; ++p)
-        for (unsigned int c = 0; c < 3; ++c)
-          vertices[p][c] = data.reference_position[3 * p + c];
-      std::vector<dealii::CellData<3>> cells(data.n_cells,
-                                             dealii::CellData<3>(4));
-      for (unsigned int e = 0; e < data.n_cells; ++e)
-        for (unsigned int a = 0; a < 4; ++a)
-          cells[e].vertices[a] = data.point[a][data.at(e)];
-      tria.create_triangulation(vertices, cells, dealii::SubCellData());
-    }
-
-    /**
-     * The subdomain of each cell of @p tria (of one level, whose coarse cell
-     * e is cell e of @p data): the rank that computes its block
-     * (block_ranks()).
+     * The subdomain of each cell of @p tria, the mesh whose cells @p data
+     * holds: the rank that computes its block (block_ranks()). The meshes of
+     * bodies have one level (refinements are made on hexahedra, before they
+     * are cut into tetrahedra), so that coarse cell e is cell e.
      */
     void
     partition_by_blocks(const P1CellData            &data,
@@ -150,11 +131,11 @@ namespace estep
         }
 
       // The stand-ins, each a copy of the present cell before it (or, for
-      // the first ones, after it).
-      unsigned int source = n_held;
-      for (unsigned int h = 0; h < n_held && source == n_held; ++h)
-        if (present[h])
-          source = h;
+      // the first ones, after it). A rank holds chunks only for its own
+      // cells and points, so some cell is present if any is held.
+      unsigned int source =
+        std::find(present.begin(), present.end(), true) - present.begin();
+      AssertThrow(n_held == 0 || source < n_held, dealii::ExcInternalError());
       for (unsigned int h = 0; h < n_held; ++h)
         if (present[h])
           source = h;
@@ -180,8 +161,7 @@ namespace estep
                       dealii::ExcMessage(
                         "The distributed mesh lacks cells of point " +
                         std::to_string(p) +
-                        ", whose gradient this rank "
-                        "computes."));
+                        ", whose gradient this rank computes."));
     }
   } // namespace
 
@@ -281,13 +261,6 @@ namespace estep
       {
         const std::vector<std::vector<unsigned int>> held =
           chunks_held_by_ranks(data, rank_count());
-        // A mesh of one level is described as it is (its coarse cells are
-        // the cells); a refined one is first flattened.
-        if (mesh.n_levels() > 1)
-          {
-            mesh.clear();
-            triangulation_of_cells(data, mesh);
-          }
         partition_by_blocks(data, mesh);
         for (unsigned int r = rank_count(); r-- > 0;)
           {

@@ -35,8 +35,9 @@ namespace estep
    * rank holds its part. Only the first rank builds the mesh and the arrays;
    * it sends each rank the per-point arrays and the boundary, and deal.II's
    * description (TriangulationDescription) of the rank's cells, those of its
-   * blocks, and their ghost layer, from a triangulation of the cells as
-   * P1CellData numbers them, partitioned by blocks (block_ranks()). Each rank
+   * blocks, and their ghost layer, from the mesh partitioned by blocks
+   * (block_ranks()), with the point of each of the description's vertices.
+   * Each rank
    * builds a dealii::parallel::fullydistributed::Triangulation from it and
    * computes the per-cell arrays of the chunks chunks_held_by_ranks() gives
    * it from that mesh's cells; the cells of those chunks beyond the ghost
