@@ -178,27 +178,9 @@ for run in fields-2 fields-whole; do
     fail "field output on 2 processes: $(tail -2 $run.txt)"
 done
 /usr/bin/python3 - << 'PY' || fail "field output on 2 processes: the pieces do not hold the snapshot"
-import base64, re, struct, sys, zlib
-def vtk_decode(encoded):
-    # VTK's compressed binary: a base64 header (blocks, block size, last block size, the
-    # compressed size of each block), then the zlib blocks one after the other, in base64.
-    blocks = struct.unpack("<I", base64.b64decode(encoded[:8])[:4])[0]
-    header_chars = 4 * ((4 * (3 + blocks) + 2) // 3)
-    sizes = struct.unpack("<%dI" % (3 + blocks), base64.b64decode(encoded[:header_chars]))[3:]
-    data, raw, at = base64.b64decode(encoded[header_chars:]), b"", 0
-    for size in sizes:
-        raw += zlib.decompress(data[at:at + size])
-        at += size
-    return raw
-def arrays(path):
-    text = open(path).read()
-    found = {}
-    for kind, name, encoded in re.findall(
-            r'<DataArray type="(\w+)"(?: Name="(\w+)")?[^>]*format="binary">\s*(\S+)\s*</DataArray>', text):
-        raw = vtk_decode(encoded)
-        code = {"Float32": "f", "Int32": "i", "UInt8": "B"}[kind]
-        found[name or "points"] = struct.unpack("<%d%s" % (len(raw) // struct.calcsize(code), code), raw)
-    return found
+import os, re, sys
+sys.path.insert(0, os.path.join(os.environ["ESTEP_SOURCE_DIR"], "tests"))
+from vtu_arrays import arrays
 whole = arrays("fields-1/fields/solution-00002.vtu")
 pvtu = open("fields-2/fields/solution-00002.pvtu").read()
 pieces = re.findall(r'<Piece Source="([^"]+)"', pvtu)

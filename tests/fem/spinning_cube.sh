@@ -76,26 +76,13 @@ if not os.path.exists("es/solution.pvd") or not os.path.exists("es/fields/soluti
 else:
     # The first snapshot decoded with the standard library (base64, zlib): vertex fields
     # on the 2,969 shared vertices, the rigid rotation's velocity w x (X - c), J = 1.
-    import base64, re, struct, zlib
-    def vtk_decode(encoded):
-        # VTK's compressed binary: a base64 header (blocks, block size, last block size, the
-        # compressed size of each block), then the zlib blocks one after the other, in base64.
-        blocks = struct.unpack("<I", base64.b64decode(encoded[:8])[:4])[0]
-        header_chars = 4 * ((4 * (3 + blocks) + 2) // 3)
-        sizes = struct.unpack("<%dI" % (3 + blocks), base64.b64decode(encoded[:header_chars]))[3:]
-        data, raw, at = base64.b64decode(encoded[header_chars:]), b"", 0
-        for size in sizes:
-            raw += zlib.decompress(data[at:at + size])
-            at += size
-        return raw
+    import re, sys
+    sys.path.insert(0, os.path.join(os.environ["ESTEP_SOURCE_DIR"], "tests"))
+    from vtu_arrays import arrays
     text = open("es/fields/solution-00000.vtu").read()
+    snapshot = arrays("es/fields/solution-00000.vtu")
     def array(name):
-        m = re.search(r'<DataArray type="(\w+)"' + (f' Name="{name}"' if name else "") +
-                      r'[^>]*format="binary">\s*(\S+)\s*</DataArray>', text)
-        kind, encoded = m.group(1), m.group(2)
-        raw = vtk_decode(encoded)
-        code = {"Float32": "f", "Int32": "i", "UInt8": "B"}[kind]
-        return struct.unpack("<%d%s" % (len(raw) // struct.calcsize(code), code), raw)
+        return snapshot[name or "points"]
     n = re.search(r'NumberOfPoints="(\d+)" NumberOfCells="(\d+)"', text)
     X, u, v, J = array(""), array("displacement"), array("velocity"), array("J")
     conn = array("connectivity")
@@ -114,7 +101,7 @@ else:
                 numpy.abs(mesh["body1/points"][:].ravel() - X).max() > 1e-7):
             bad.append("HDF5 mesh differs from the vtu mesh")
     for k in (0, 2):
-        text = open(f"es/fields/solution-0000{k}.vtu").read()
+        snapshot = arrays(f"es/fields/solution-0000{k}.vtu")
         with h5py.File(f"h5/fields/solution-0000{k}.h5") as h5:
             if h5.attrs["time"] != 2.0 * k:
                 bad.append(f"HDF5 snapshot {k}: time {h5.attrs['time']}")
