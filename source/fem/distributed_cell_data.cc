@@ -262,23 +262,19 @@ namespace estep
         const std::vector<std::vector<unsigned int>> held =
           chunks_held_by_ranks(data, rank_count());
         partition_by_blocks(data, mesh);
-        for (unsigned int r = rank_count(); r-- > 0;)
+        for (unsigned int r = 1; r < rank_count(); ++r)
           {
             std::vector<unsigned int> points;
-            std::vector<char>         bytes =
+            const std::vector<char>   bytes =
               packed_description_for_rank(mesh, data, r, points);
-            if (r == 0)
-              {
-                chunks = held[0];
-                description.swap(bytes);
-                point_of_vertex.swap(points);
-                mesh.clear();
-                break;
-              }
             send_from_first_rank(r, held[r].data(), held[r].size());
             send_from_first_rank(r, bytes.data(), bytes.size());
             send_from_first_rank(r, points.data(), points.size());
           }
+        chunks = held[0];
+        description =
+          packed_description_for_rank(mesh, data, 0, point_of_vertex);
+        mesh.clear();
       }
     else
       {
