@@ -170,11 +170,21 @@ namespace estep
   std::vector<std::vector<unsigned int>>
   chunks_held_by_ranks(const P1CellData &data, const unsigned int n_ranks)
   {
+    return chunks_held_by_ranks(
+      data, block_ranks(n_blocks(data.n_padded_cells()), n_ranks), n_ranks);
+  }
+
+
+
+  std::vector<std::vector<unsigned int>>
+  chunks_held_by_ranks(const P1CellData                &data,
+                       const std::vector<unsigned int> &block_rank,
+                       const unsigned int               n_ranks)
+  {
     Assert(data.held_chunks().size() == data.n_chunks(),
            dealii::ExcInternalError());
-    const unsigned int              n_padded = data.n_padded_cells();
-    const std::vector<unsigned int> block_rank =
-      block_ranks(n_blocks(n_padded), n_ranks);
+    const unsigned int n_padded = data.n_padded_cells();
+    AssertDimension(block_rank.size(), n_blocks(n_padded));
     std::vector<std::vector<bool>> held(n_ranks,
                                         std::vector<bool>(data.n_chunks()));
     constexpr unsigned int         chunk = P1CellData::gradient_chunk;

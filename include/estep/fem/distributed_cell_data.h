@@ -31,6 +31,15 @@ namespace estep
   chunks_held_by_ranks(const P1CellData &data, const unsigned int n_ranks);
 
   /**
+   * The same for any partition of the blocks among @p n_ranks ranks:
+   * @p block_rank holds the rank of each block of cells.
+   */
+  std::vector<std::vector<unsigned int>>
+  chunks_held_by_ranks(const P1CellData                &data,
+                       const std::vector<unsigned int> &block_rank,
+                       const unsigned int               n_ranks);
+
+  /**
    * make_p1_cell_data() of the mesh that @p make_mesh builds, of which every
    * rank holds its part. Only the first rank builds the mesh and the arrays;
    * it sends each rank the per-point arrays and the boundary, and deal.II's
