@@ -92,9 +92,7 @@ namespace estep
                     P1CellData                        &data)
     {
       data.hold_chunks(chunks);
-      unsigned int n_held = 0;
-      for (const unsigned int c : chunks)
-        n_held += data.chunk_cells(c).end - data.chunk_cells(c).begin;
+      const unsigned int n_held = data.n_held_cells();
       data.for_each_cell_array([&](auto &v) { v.assign(n_held, {}); });
       std::vector<bool> present(n_held, false);
       // The mass of the cells of each point on this rank, to check that
@@ -141,10 +139,7 @@ namespace estep
           source = h;
         else
           {
-            for (auto &v : data.point)
-              v[h] = v[source];
-            for (auto &v : data.shape_gradient)
-              v[h] = v[source];
+            data.for_each_cell_array([&](auto &v) { v[h] = v[source]; });
             data.volume[h] = 0.;
           }
 

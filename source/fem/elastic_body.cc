@@ -37,15 +37,12 @@ namespace estep
                   std::to_string(data.density) + ")."));
     // The per-cell arrays must hold at least this rank's cells (all of them
     // on one rank).
-    const unsigned int n_padded    = data.n_padded_cells();
-    const unsigned int n_held      = data.volume.size();
-    const BlockRange   mine        = rank_cells(n_padded, this_rank());
-    unsigned int       n_in_chunks = 0;
-    for (const unsigned int c : data.held_chunks())
-      n_in_chunks += data.chunk_cells(c).end - data.chunk_cells(c).begin;
-    bool complete = data.n_cells > 0 &&
+    const unsigned int n_padded = data.n_padded_cells();
+    const unsigned int n_held   = data.volume.size();
+    const BlockRange   mine     = rank_cells(n_padded, this_rank());
+    bool               complete = data.n_cells > 0 &&
                     data.chunk_start.size() == data.n_chunks() &&
-                    n_held == n_in_chunks && data.holds(mine) &&
+                    n_held == data.n_held_cells() && data.holds(mine) &&
                     data.reference_position.size() == 3 * data.n_points &&
                     data.lumped_mass.size() == data.n_points &&
                     data.first_cell.size() == data.n_points &&

@@ -246,6 +246,15 @@ namespace estep
   }
 
   unsigned int
+  P1CellData::n_held_cells() const
+  {
+    unsigned int n = 0;
+    for (const unsigned int c : held_chunks())
+      n += chunk_cells(c).end - chunk_cells(c).begin;
+    return n;
+  }
+
+  unsigned int
   P1CellData::n_cells_in(const std::vector<unsigned int> &chunks) const
   {
     unsigned int n = 0;

@@ -90,6 +90,11 @@ namespace estep
     std::vector<unsigned int>
     held_chunks() const;
 
+    /** The number of entries of the per-cell arrays: the cells of the held
+     * chunks, padding included. */
+    unsigned int
+    n_held_cells() const;
+
     /** The number of cells (the padding aside) in the chunks @p chunks. */
     unsigned int
     n_cells_in(const std::vector<unsigned int> &chunks) const;
