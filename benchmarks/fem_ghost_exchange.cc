@@ -26,37 +26,16 @@
 #include <estep/fem/meshes.h>
 #include <estep/fem/p1_cell_data.h>
 
+#include "fastest_of_rounds.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <memory>
 #include <vector>
 
 namespace
 {
-  /** The fastest of three rounds of @p calls calls of @p exchange, per call,
-   * in seconds (every process starts each round together). */
-  template <typename Exchange>
-  double
-  seconds_per_call(const unsigned int calls, const Exchange &exchange)
-  {
-    double fastest = std::numeric_limits<double>::infinity();
-    for (unsigned int round = 0; round < 3; ++round)
-      {
-        MPI_Barrier(MPI_COMM_WORLD);
-        const auto start = std::chrono::steady_clock::now();
-        for (unsigned int i = 0; i < calls; ++i)
-          exchange();
-        const double seconds = std::chrono::duration<double>(
-                                 std::chrono::steady_clock::now() - start)
-                                 .count();
-        fastest = std::min(fastest, seconds / calls);
-      }
-    return dealii::Utilities::MPI::max(fastest, MPI_COMM_WORLD);
-  }
-
   /** The value point coordinate @p i holds in this benchmark. */
   double
   value_of(const dealii::types::global_dof_index i)
@@ -160,10 +139,10 @@ main(int argc, char **argv)
       std::vector<double> mine(3 * n_own), all(3 * data.n_points);
       for (unsigned int k = 0; k < mine.size(); ++k)
         mine[k] = value_of(3 * first_own + k);
-      const double gather       = seconds_per_call(calls, [&]() {
+      const double gather       = benchmark_mpi::seconds_per_call(calls, [&]() {
         estep::gather_from_all_ranks(mine.data(), doubles_per_rank, all.data());
       });
-      const double ghost_update = seconds_per_call(calls, [&]() {
+      const double ghost_update = benchmark_mpi::seconds_per_call(calls, [&]() {
         state.zero_out_ghost_values();
         state.update_ghost_values();
       });

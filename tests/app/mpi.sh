@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # MPI: a run gives the same trajectory to the last bit on 1 process and on 2 MPI processes (of 1
-# and of 2 threads): the ranks share the blocks of cells, and every rank adds the blocks' sums in
-# block order. With and without contact, and with an implicit method. A run on 2 processes ended by SIGTERM resumes on 1 to
+# and of 2 threads), and for the cube on 3: the ranks share the blocks of cells, and every rank
+# adds the blocks' sums in block order. With and without contact, and with an implicit method. A run on 2 processes ended by SIGTERM resumes on 1 to
 # the same end, and one on 1 resumes on 2. Field output writes a piece per process in vtu, and
 # the same datasets as one process in HDF5. An output that fails mid-run, or at the start, ends
 # every process. A system without elastic cells, or with fewer cells
@@ -61,6 +61,22 @@ import json, sys
 held = json.load(open("cube-2x1/summary.json"))["problem"]["cells held by each process"]
 own = [12 * 1024, 24000 - 12 * 1024]
 sys.exit(0 if held[1] == own[1] and own[0] < held[0] < 1.5 * own[0] else f"held {held}, own {own}")
+PY
+# On 3 processes (of 1 thread, more than the cores): the middle one has ghost cells of the
+# processes on both sides, and, like the first, holds chunks of the next one's cells for its
+# points' gradient. The same bytes as on 1 process.
+"$MPIEXEC" --bind-to none --oversubscribe -np 3 "$ESTEP" "${cube[@]}" --threads 1 \
+  --set "Output directory=cube-3x1" > cube-3x1.txt 2>&1 ||
+  fail "cube on 3 processes: $(tail -2 cube-3x1.txt)"
+for file in checkpoint.bin history.csv; do
+  cmp -s "cube-1x1/$file" "cube-3x1/$file" || fail "cube: $file on 3 processes differs from 1 process"
+done
+/usr/bin/python3 - << 'PY' || fail "cube: summary.json's cells held by each of 3 processes"
+import json, sys
+held = json.load(open("cube-3x1/summary.json"))["problem"]["cells held by each process"]
+own = [8 * 1024, 8 * 1024, 24000 - 16 * 1024]
+sys.exit(0 if held[2] == own[2] and all(own[r] < held[r] < 1.5 * own[r] for r in (0, 1))
+         else f"held {held}, own {own}")
 PY
 
 # An implicit method: its Hessian needs every cell, which each process gathers from the others
