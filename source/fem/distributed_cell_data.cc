@@ -41,14 +41,14 @@ namespace estep
      * deal.II's description of the cells of rank @p rank in @p tria (the
      * cells of @p data, partitioned by partition_by_blocks()): its own and
      * the cells that share a vertex with them, each a coarse cell whose id is
-     * its number in @p data; packed for sending. The point of each of its
-     * vertices into @p points.
+     * its number in @p data. The point of each of its vertices into
+     * @p points.
      */
-    std::vector<char>
-    packed_description_for_rank(const dealii::Triangulation<3, 3> &tria,
-                                const P1CellData                  &data,
-                                const unsigned int                 rank,
-                                std::vector<unsigned int>         &points)
+    dealii::TriangulationDescription::Description<3, 3>
+    description_for_rank(const dealii::Triangulation<3, 3> &tria,
+                         const P1CellData                  &data,
+                         const unsigned int                 rank,
+                         std::vector<unsigned int>         &points)
     {
       const auto description = dealii::TriangulationDescription::Utilities::
         create_description_from_triangulation(
@@ -69,7 +69,7 @@ namespace estep
       AssertThrow(std::find(points.begin(), points.end(), unset) ==
                     points.end(),
                   dealii::ExcInternalError());
-      return dealii::Utilities::pack(description, false);
+      return description;
     }
 
     /**
@@ -260,8 +260,8 @@ namespace estep
     // The cells: each rank's from a parallel::fullydistributed::Triangulation
     // of its cells and their ghost layer, which deal.II builds from the
     // description the first rank makes of its serial mesh for it.
-    std::vector<unsigned int> chunks, point_of_vertex;
-    std::vector<char>         description;
+    std::vector<unsigned int>                           chunks, point_of_vertex;
+    dealii::TriangulationDescription::Description<3, 3> description;
     if (this_rank() == 0)
       {
         const std::vector<std::vector<unsigned int>> held =
@@ -270,30 +270,29 @@ namespace estep
         for (unsigned int r = 1; r < rank_count(); ++r)
           {
             std::vector<unsigned int> points;
-            const std::vector<char>   bytes =
-              packed_description_for_rank(mesh, data, r, points);
+            const std::vector<char>   bytes = dealii::Utilities::pack(
+              description_for_rank(mesh, data, r, points), false);
             send_from_first_rank(r, held[r].data(), held[r].size());
             send_from_first_rank(r, bytes.data(), bytes.size());
             send_from_first_rank(r, points.data(), points.size());
           }
-        chunks = held[0];
-        description =
-          packed_description_for_rank(mesh, data, 0, point_of_vertex);
+        chunks      = held[0];
+        description = description_for_rank(mesh, data, 0, point_of_vertex);
         mesh.clear();
       }
     else
       {
+        std::vector<char> bytes;
         receive_from_first_rank(chunks);
-        receive_from_first_rank(description);
+        receive_from_first_rank(bytes);
         receive_from_first_rank(point_of_vertex);
+        description = dealii::Utilities::unpack<
+          dealii::TriangulationDescription::Description<3, 3>>(bytes, false);
       }
-    auto unpacked = dealii::Utilities::unpack<
-      dealii::TriangulationDescription::Description<3, 3>>(description, false);
-    unpacked.comm = MPI_COMM_WORLD;
-    std::vector<char>().swap(description);
+    description.comm = MPI_COMM_WORLD;
     dealii::parallel::fullydistributed::Triangulation<3, 3> tria(
       MPI_COMM_WORLD);
-    tria.create_triangulation(unpacked);
+    tria.create_triangulation(description);
     // What one rank meets, every rank throws.
     std::string problem;
     try
