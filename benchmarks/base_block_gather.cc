@@ -18,7 +18,6 @@
 
 #include "fastest_of_rounds.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>

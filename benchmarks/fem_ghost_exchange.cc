@@ -79,24 +79,27 @@ main(int argc, char **argv)
       const estep::P1CellData data = estep::make_p1_cell_data(tria, 0.1);
       tria.clear();
 
-      // Own points: those whose first cell is in this rank's blocks. The
+      // Own points: those whose first cell is in this rank's cells. The
       // points are numbered in the order of their first cells, so each
-      // rank's are one range.
-      const std::vector<unsigned int> block_rank =
-        estep::block_ranks(estep::n_blocks(data.n_padded_cells()));
+      // rank's are one range, in rank order.
       std::vector<unsigned int> points_per_rank(ranks, 0);
-      unsigned int              first_own = data.n_points;
-      for (unsigned int p = 0; p < data.n_points; ++p)
+      for (unsigned int r = 0; r < ranks; ++r)
         {
-          const unsigned int r =
-            block_rank[data.first_cell[p] / estep::block_size];
-          ++points_per_rank[r];
-          if (r == me)
-            first_own = std::min(first_own, p);
+          const estep::BlockRange cells =
+            estep::rank_cells(data.n_padded_cells(), r);
+          for (unsigned int p = 0; p < data.n_points; ++p)
+            points_per_rank[r] += data.first_cell[p] >= cells.begin &&
+                                  data.first_cell[p] < cells.end;
         }
-      const unsigned int n_own = points_per_rank[me];
+      unsigned int first_own = 0;
+      for (unsigned int r = 0; r < me; ++r)
+        first_own += points_per_rank[r];
+      const unsigned int      n_own = points_per_rank[me];
+      const estep::BlockRange own_cells =
+        estep::rank_cells(data.n_padded_cells(), me);
       for (unsigned int p = first_own; p < first_own + n_own; ++p)
-        if (block_rank[data.first_cell[p] / estep::block_size] != me)
+        if (data.first_cell[p] < own_cells.begin ||
+            data.first_cell[p] >= own_cells.end)
           {
             std::fprintf(stderr, "the own points are not one range\n");
             return 1;

@@ -26,6 +26,14 @@ fail() {
   failures=$((failures + 1))
 }
 
+# same_end REFERENCE RUN WHAT: RUN/ holds the final checkpoint and history.csv of REFERENCE/,
+# byte for byte (WHAT names RUN in the message).
+same_end() {
+  for file in checkpoint.bin history.csv; do
+    cmp -s "$1/$file" "$2/$file" || fail "$3: $file differs from $1"
+  done
+}
+
 # same_on_ranks NAME ARGS...: run ARGS on 1 process (1 thread), on 2 processes of 1 thread and
 # of 2 threads, into NAME-<ranks>x<threads>/, and compare.
 same_on_ranks() {
@@ -39,10 +47,7 @@ same_on_ranks() {
       fail "$name on 2 processes of $threads threads: $(tail -2 "$run.txt")"
     grep -q '"MPI processes": 2,' "$run/summary.json" ||
       fail "$run: summary.json does not record 2 MPI processes"
-    for file in checkpoint.bin history.csv; do
-      cmp -s "$name-1x1/$file" "$run/$file" ||
-        fail "$name: $file on 2 processes of $threads threads differs from 1 process"
-    done
+    same_end "$name-1x1" "$run" "$name on 2 processes of $threads threads"
   done
   ((failures == before)) || return
   echo "$name: $(grep -o '"steps": [0-9]*' "$name-1x1/summary.json"), identical on 1 process and on 2 processes of 1 and 2 threads"
@@ -54,30 +59,29 @@ cube=("$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10"
       --set "Time integration/End time=1.5" --set "Output/Checkpoint interval=0.25"
       --set "Postprocessors/List=history, step histogram, progress")
 same_on_ranks cube "${cube[@]}"
-# What each process holds, in summary.json: the second its own cells alone (every cell of its
-# points comes after its first cell), the first its own and a layer of the second's.
-/usr/bin/python3 - << 'PY' || fail "cube: summary.json's cells held by each process"
+# held_as_expected RUN OWN...: summary.json of RUN records the cells each process holds: the last
+# process its own cells alone (every cell of its points comes after its first cell), each other
+# its own (OWN, in process order) and a layer of the next one's.
+held_as_expected() {
+  /usr/bin/python3 - "$@" << 'PY' || fail "$1: summary.json's cells held by each process"
 import json, sys
-held = json.load(open("cube-2x1/summary.json"))["problem"]["cells held by each process"]
-own = [12 * 1024, 24000 - 12 * 1024]
-sys.exit(0 if held[1] == own[1] and own[0] < held[0] < 1.5 * own[0] else f"held {held}, own {own}")
+held = json.load(open(sys.argv[1] + "/summary.json"))["problem"]["cells held by each process"]
+own = [int(n) for n in sys.argv[2:]]
+last = len(own) - 1
+sys.exit(0 if len(held) == len(own) and held[last] == own[last]
+         and all(own[r] < held[r] < 1.5 * own[r] for r in range(last))
+         else f"held {held}, own {own}")
 PY
+}
+held_as_expected cube-2x1 $((12 * 1024)) $((24000 - 12 * 1024))
 # On 3 processes (of 1 thread, more than the cores): the middle one has ghost cells of the
 # processes on both sides, and, like the first, holds chunks of the next one's cells for its
-# points' gradient. The same bytes as on 1 process.
+# points' gradient.
 "$MPIEXEC" --bind-to none --oversubscribe -np 3 "$ESTEP" "${cube[@]}" --threads 1 \
   --set "Output directory=cube-3x1" > cube-3x1.txt 2>&1 ||
   fail "cube on 3 processes: $(tail -2 cube-3x1.txt)"
-for file in checkpoint.bin history.csv; do
-  cmp -s "cube-1x1/$file" "cube-3x1/$file" || fail "cube: $file on 3 processes differs from 1 process"
-done
-/usr/bin/python3 - << 'PY' || fail "cube: summary.json's cells held by each of 3 processes"
-import json, sys
-held = json.load(open("cube-3x1/summary.json"))["problem"]["cells held by each process"]
-own = [8 * 1024, 8 * 1024, 24000 - 16 * 1024]
-sys.exit(0 if held[2] == own[2] and all(own[r] < held[r] < 1.5 * own[r] for r in (0, 1))
-         else f"held {held}, own {own}")
-PY
+same_end cube-1x1 cube-3x1 "cube on 3 processes"
+held_as_expected cube-3x1 $((8 * 1024)) $((8 * 1024)) $((24000 - 16 * 1024))
 
 # An implicit method: its Hessian needs every cell, which each process gathers from the others
 # (each holds only the cells it computes). The cube of 5,184 cells (6 blocks), IDA to t = 1; and
@@ -164,9 +168,7 @@ grep -q '"status": "interrupted"' resumed/summary.json ||
 "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed" --resume > resumed.txt 2>&1 ||
   fail "the resume on 1 process: $(tail -2 resumed.txt)"
 grep "resuming from" resumed.txt
-for file in checkpoint.bin history.csv; do
-  cmp -s whole/$file resumed/$file || fail "resumed on 1 process: $file differs from the run on 1"
-done
+same_end whole resumed "stopped on 2 processes, resumed on 1"
 
 # And the other way round: a run on 1 process stopped by SIGTERM, resumed on 2.
 "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed-on-2" > stopped-1.txt 2>&1 &
@@ -176,10 +178,7 @@ kill -TERM $pid 2> /dev/null
 wait $pid
 "${mpi[@]}" "$ESTEP" "${long_cube[@]}" --threads 1 --set "Output directory=resumed-on-2" --resume \
   > resumed-on-2.txt 2>&1 || fail "the resume on 2 processes: $(tail -2 resumed-on-2.txt)"
-for file in checkpoint.bin history.csv; do
-  cmp -s whole/$file resumed-on-2/$file ||
-    fail "stopped on 1 process, resumed on 2: $file differs from the run on 1"
-done
+same_end whole resumed-on-2 "stopped on 1 process, resumed on 2"
 
 # Field output on 2 processes: each writes its piece (the cells of its blocks), the first the
 # .pvtu joining them, which the series lists; the pieces hold the cells, points and values of the
