@@ -6,6 +6,7 @@
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
 #include <estep/fem/distributed_cell_data.h>
+#include <estep/fem/rank_descriptions.h>
 
 #include <algorithm>
 #include <array>
@@ -20,44 +21,32 @@ namespace estep
   namespace
   {
     /**
-     * The subdomain of each cell of @p tria, the mesh whose cells @p data
-     * holds: the rank that computes its block (block_ranks()). The meshes of
-     * bodies have one level (refinements are made on hexahedra, before they
-     * are cut into tetrahedra), so that coarse cell e is cell e.
+     * The rank that computes each cell of @p data, the cells of a body's
+     * mesh: the rank of its block (block_ranks()).
      */
-    void
-    partition_by_blocks(const P1CellData            &data,
-                        dealii::Triangulation<3, 3> &tria)
+    std::vector<unsigned int>
+    cell_ranks(const P1CellData &data)
     {
-      AssertThrow(tria.n_levels() == 1 && tria.n_active_cells() == data.n_cells,
-                  dealii::ExcInternalError());
       const std::vector<unsigned int> block_rank =
         block_ranks(n_blocks(data.n_padded_cells()));
-      for (const auto &cell : tria.active_cell_iterators())
-        cell->set_subdomain_id(block_rank[cell->index() / block_size]);
+      std::vector<unsigned int> rank(data.n_cells);
+      for (unsigned int e = 0; e < data.n_cells; ++e)
+        rank[e] = block_rank[e / block_size];
+      return rank;
     }
 
     /**
-     * deal.II's description of the cells of rank @p rank in @p tria (the
-     * cells of @p data, partitioned by partition_by_blocks()): its own and
-     * the cells that share a vertex with them, each a coarse cell whose id is
-     * its number in @p data. The point of each of its vertices into
-     * @p points.
+     * The point of @p data at each vertex of @p description, a description
+     * of cells of @p data whose coarse cell ids are their numbers.
      */
-    dealii::TriangulationDescription::Description<3, 3>
-    description_for_rank(const dealii::Triangulation<3, 3> &tria,
-                         const P1CellData                  &data,
-                         const unsigned int                 rank,
-                         std::vector<unsigned int>         &points)
+    std::vector<unsigned int>
+    points_of_vertices(
+      const dealii::TriangulationDescription::Description<3, 3> &description,
+      const P1CellData                                          &data)
     {
-      const auto description = dealii::TriangulationDescription::Utilities::
-        create_description_from_triangulation(
-          tria,
-          MPI_COMM_WORLD,
-          dealii::TriangulationDescription::Settings::default_setting,
-          rank);
-      constexpr unsigned int unset = -1;
-      points.assign(description.coarse_cell_vertices.size(), unset);
+      constexpr unsigned int    unset = -1;
+      std::vector<unsigned int> points(description.coarse_cell_vertices.size(),
+                                       unset);
       for (std::size_t i = 0; i < description.coarse_cells.size(); ++i)
         {
           const unsigned int e =
@@ -69,7 +58,7 @@ namespace estep
       AssertThrow(std::find(points.begin(), points.end(), unset) ==
                     points.end(),
                   dealii::ExcInternalError());
-      return description;
+      return points;
     }
 
     /**
@@ -266,18 +255,25 @@ namespace estep
       {
         const std::vector<std::vector<unsigned int>> held =
           chunks_held_by_ranks(data, rank_count());
-        partition_by_blocks(data, mesh);
+        // The mesh has one level (refinements are made on hexahedra, before
+        // they are cut into tetrahedra), so that coarse cell e is cell e.
+        const RankDescriptions descriptions(mesh,
+                                            cell_ranks(data),
+                                            rank_count());
         for (unsigned int r = 1; r < rank_count(); ++r)
           {
-            std::vector<unsigned int> points;
-            const std::vector<char>   bytes = dealii::Utilities::pack(
-              description_for_rank(mesh, data, r, points), false);
+            const auto description = descriptions.describe(r);
+            const std::vector<unsigned int> points =
+              points_of_vertices(description, data);
+            const std::vector<char> bytes =
+              dealii::Utilities::pack(description, false);
             send_from_first_rank(r, held[r].data(), held[r].size());
             send_from_first_rank(r, bytes.data(), bytes.size());
             send_from_first_rank(r, points.data(), points.size());
           }
-        chunks      = held[0];
-        description = description_for_rank(mesh, data, 0, point_of_vertex);
+        chunks          = held[0];
+        description     = descriptions.describe(0);
+        point_of_vertex = points_of_vertices(description, data);
         mesh.clear();
       }
     else
