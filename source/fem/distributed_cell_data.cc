@@ -169,21 +169,22 @@ namespace estep
            dealii::ExcInternalError());
     const unsigned int n_padded = data.n_padded_cells();
     AssertDimension(block_rank.size(), n_blocks(n_padded));
-    std::vector<std::vector<bool>> held(n_ranks,
-                                        std::vector<bool>(data.n_chunks()));
-    constexpr unsigned int         chunk = P1CellData::gradient_chunk;
+    // The cells come in increasing order, and with them their chunks: each
+    // rank's list stays sorted when a chunk is added only if it is not its
+    // last one. One pass over the cells, whatever the number of ranks.
+    std::vector<std::vector<unsigned int>> chunks(n_ranks);
+    const auto hold = [&](const unsigned int r, const unsigned int c) {
+      if (chunks[r].empty() || chunks[r].back() != c)
+        chunks[r].push_back(c);
+    };
+    constexpr unsigned int chunk = P1CellData::gradient_chunk;
     for (unsigned int e = 0; e < n_padded; ++e)
       {
-        held[block_rank[e / block_size]][e / chunk] = true;
+        hold(block_rank[e / block_size], e / chunk);
         for (unsigned int a = 0; a < 4; ++a)
-          held[block_rank[data.first_cell[data.point[a][e]] / block_size]]
-              [e / chunk] = true;
+          hold(block_rank[data.first_cell[data.point[a][e]] / block_size],
+               e / chunk);
       }
-    std::vector<std::vector<unsigned int>> chunks(n_ranks);
-    for (unsigned int r = 0; r < n_ranks; ++r)
-      for (unsigned int c = 0; c < data.n_chunks(); ++c)
-        if (held[r][c])
-          chunks[r].push_back(c);
     return chunks;
   }
 

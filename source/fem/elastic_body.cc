@@ -301,20 +301,23 @@ namespace estep
         point_part[p] = block_part[data.first_cell[p] / block_size];
       }
 
+    // The points in rank order, each rank's in increasing order: a counting
+    // sort, one pass over the points whatever the number of ranks.
     doubles_per_rank.assign(ranks, 0);
+    for (unsigned int p = 0; p < data.n_points; ++p)
+      doubles_per_rank[point_rank[p]] += 3;
+    std::vector<unsigned int> next(ranks, 0);
+    for (unsigned int r = 1; r < ranks; ++r)
+      next[r] = next[r - 1] + doubles_per_rank[r - 1] / 3;
+    first = next[me];
     parts.resize(n_parts);
-    for (unsigned int r = 0; r < ranks; ++r)
+    points.resize(data.n_points);
+    for (unsigned int p = 0; p < data.n_points; ++p)
       {
+        const unsigned int r = point_rank[p];
         if (r == me)
-          first = points.size();
-        for (unsigned int p = 0; p < data.n_points; ++p)
-          if (point_rank[p] == r)
-            {
-              if (r == me)
-                parts[point_part[p]].positions.push_back(points.size() - first);
-              points.push_back(p);
-              doubles_per_rank[r] += 3;
-            }
+          parts[point_part[p]].positions.push_back(next[r] - first);
+        points[next[r]++] = p;
       }
     in_order = true;
     for (unsigned int k = 0; k < points.size(); ++k)

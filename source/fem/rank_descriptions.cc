@@ -26,10 +26,10 @@ namespace estep
       {
         const unsigned int r = cell_rank[cell->index()];
         AssertThrow(r < n_ranks,
-                    dealii::ExcMessage(
-                      "RankDescriptions: cell " + std::to_string(cell->index()) +
-                      " is given rank " + std::to_string(r) + " of " +
-                      std::to_string(n_ranks)));
+                    dealii::ExcMessage("RankDescriptions: cell " +
+                                       std::to_string(cell->index()) +
+                                       " is given rank " + std::to_string(r) +
+                                       " of " + std::to_string(n_ranks)));
         for (const unsigned int v : cell->vertex_indices())
           {
             std::vector<unsigned int> &ranks =
@@ -67,9 +67,9 @@ namespace estep
   dealii::TriangulationDescription::Description<3, 3>
   RankDescriptions::describe(const unsigned int rank) const
   {
-    namespace TD                     = dealii::TriangulationDescription;
-    const std::vector<unsigned int> &cells = cells_of(rank);
-    const auto cell_at = [&](const unsigned int e) {
+    namespace TD                             = dealii::TriangulationDescription;
+    const std::vector<unsigned int> &cells   = cells_of(rank);
+    const auto                       cell_at = [&](const unsigned int e) {
       return dealii::Triangulation<3, 3>::active_cell_iterator(&mesh, 0, e);
     };
 
@@ -113,7 +113,7 @@ namespace estep
         description.coarse_cell_index_to_coarse_cell_id.push_back(e);
 
         TD::CellData<3> info;
-        info.id = dealii::CellId(e, 0, nullptr).to_binary<3>();
+        info.id                 = dealii::CellId(e, 0, nullptr).to_binary<3>();
         info.subdomain_id       = cell_rank[e];
         info.level_subdomain_id = cell->level_subdomain_id();
         info.manifold_id        = cell->manifold_id();

@@ -56,8 +56,8 @@ namespace estep
     describe(const unsigned int rank) const;
 
   private:
-    const dealii::Triangulation<3, 3> &mesh;
-    const std::vector<unsigned int>    cell_rank;
+    const dealii::Triangulation<3, 3>     &mesh;
+    const std::vector<unsigned int>        cell_rank;
     std::vector<std::vector<unsigned int>> cells_of_rank;
   };
 } // namespace estep
