@@ -23,21 +23,14 @@
 #include <estep/fem/p1_cell_data.h>
 #include <estep/fem/rank_descriptions.h>
 
+#include "seconds_since.h"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
 
-namespace
-{
-  double
-  seconds_since(const std::chrono::steady_clock::time_point start)
-  {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                         start)
-      .count();
-  }
-} // namespace
+using benchmark_timing::seconds_since;
 
 int
 main(int argc, char **argv)

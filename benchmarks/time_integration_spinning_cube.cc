@@ -22,6 +22,8 @@
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/explicit_newmark.h>
 
+#include "seconds_since.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -30,13 +32,7 @@
 
 namespace
 {
-  double
-  seconds_since(const std::chrono::steady_clock::time_point start)
-  {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                         start)
-      .count();
-  }
+  using benchmark_timing::seconds_since;
 
   template <typename Work>
   double
