@@ -82,24 +82,17 @@ main(int argc, char **argv)
       // Own points: those whose first cell is in this rank's cells. The
       // points are numbered in the order of their first cells, so each
       // rank's are one range, in rank order.
+      const std::vector<unsigned int> cell_rank =
+        estep::cell_ranks(data.n_cells);
       std::vector<unsigned int> points_per_rank(ranks, 0);
-      for (unsigned int r = 0; r < ranks; ++r)
-        {
-          const estep::BlockRange cells =
-            estep::rank_cells(data.n_padded_cells(), r);
-          for (unsigned int p = 0; p < data.n_points; ++p)
-            points_per_rank[r] += data.first_cell[p] >= cells.begin &&
-                                  data.first_cell[p] < cells.end;
-        }
+      for (unsigned int p = 0; p < data.n_points; ++p)
+        ++points_per_rank[cell_rank[data.first_cell[p]]];
       unsigned int first_own = 0;
       for (unsigned int r = 0; r < me; ++r)
         first_own += points_per_rank[r];
-      const unsigned int      n_own = points_per_rank[me];
-      const estep::BlockRange own_cells =
-        estep::rank_cells(data.n_padded_cells(), me);
+      const unsigned int n_own = points_per_rank[me];
       for (unsigned int p = first_own; p < first_own + n_own; ++p)
-        if (data.first_cell[p] < own_cells.begin ||
-            data.first_cell[p] >= own_cells.end)
+        if (cell_rank[data.first_cell[p]] != me)
           {
             std::fprintf(stderr, "the own points are not one range\n");
             return 1;

@@ -62,11 +62,8 @@ main(int argc, char **argv)
       const estep::P1CellData data    = estep::make_p1_cell_data(mesh, 0.1);
       for (const unsigned int p : processes)
         {
-          const std::vector<unsigned int> block_rank =
-            estep::block_ranks(estep::n_blocks(n_cells), p);
-          std::vector<unsigned int> cell_rank(n_cells);
-          for (unsigned int e = 0; e < n_cells; ++e)
-            cell_rank[e] = block_rank[e / estep::block_size];
+          const std::vector<unsigned int> cell_rank =
+            estep::cell_ranks(n_cells, p);
           for (const auto &cell : mesh.active_cell_iterators())
             cell->set_subdomain_id(cell_rank[cell->index()]);
 
@@ -106,7 +103,6 @@ main(int argc, char **argv)
           const std::vector<std::vector<unsigned int>> held =
             estep::chunks_held_by_ranks(data, p);
           const double chunks = seconds_since(start);
-          same                = same && held.size() == p;
           std::printf("%9u %6u %14.3f %14.3f %8.1f %10.3f %6s %10.3f\n",
                       n_cells,
                       p,

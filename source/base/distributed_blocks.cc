@@ -95,6 +95,19 @@ namespace estep
 
 
 
+  std::vector<unsigned int>
+  cell_ranks(const unsigned int n_cells, const unsigned int n_ranks)
+  {
+    const std::vector<unsigned int> block_rank =
+      block_ranks(n_blocks(n_cells), n_ranks);
+    std::vector<unsigned int> rank(n_cells);
+    for (unsigned int e = 0; e < n_cells; ++e)
+      rank[e] = block_rank[e / block_size];
+    return rank;
+  }
+
+
+
   BlockRange
   rank_cells(const unsigned int n_cells,
              const unsigned int rank,

@@ -21,21 +21,6 @@ namespace estep
   namespace
   {
     /**
-     * The rank that computes each cell of @p data, the cells of a body's
-     * mesh: the rank of its block (block_ranks()).
-     */
-    std::vector<unsigned int>
-    cell_ranks(const P1CellData &data)
-    {
-      const std::vector<unsigned int> block_rank =
-        block_ranks(n_blocks(data.n_padded_cells()));
-      std::vector<unsigned int> rank(data.n_cells);
-      for (unsigned int e = 0; e < data.n_cells; ++e)
-        rank[e] = block_rank[e / block_size];
-      return rank;
-    }
-
-    /**
      * The point of @p data at each vertex of @p description, a description
      * of cells of @p data whose coarse cell ids are their numbers.
      */
@@ -259,7 +244,7 @@ namespace estep
         // The mesh has one level (refinements are made on hexahedra, before
         // they are cut into tetrahedra), so that coarse cell e is cell e.
         const RankDescriptions descriptions(mesh,
-                                            cell_ranks(data),
+                                            cell_ranks(data.n_cells),
                                             rank_count());
         for (unsigned int r = 1; r < rank_count(); ++r)
           {

@@ -6,25 +6,26 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace estep
 {
   RankDescriptions::RankDescriptions(const dealii::Triangulation<3, 3> &mesh,
-                                     const std::vector<unsigned int> &cell_rank,
-                                     const unsigned int               n_ranks)
+                                     std::vector<unsigned int> cell_rank,
+                                     const unsigned int        n_ranks)
     : mesh(mesh)
-    , cell_rank(cell_rank)
+    , cell_rank(std::move(cell_rank))
     , cells_of_rank(n_ranks)
   {
     AssertThrow(mesh.n_levels() == 1 &&
-                  cell_rank.size() == mesh.n_active_cells(),
+                  this->cell_rank.size() == mesh.n_active_cells(),
                 dealii::ExcMessage("RankDescriptions: a mesh of one level "
                                    "and a rank for each of its cells"));
     // The ranks that own a cell at each vertex.
     std::vector<std::vector<unsigned int>> vertex_ranks(mesh.n_vertices());
     for (const auto &cell : mesh.active_cell_iterators())
       {
-        const unsigned int r = cell_rank[cell->index()];
+        const unsigned int r = this->cell_rank[cell->index()];
         AssertThrow(r < n_ranks,
                     dealii::ExcMessage("RankDescriptions: cell " +
                                        std::to_string(cell->index()) +

@@ -91,11 +91,8 @@ namespace
     for (const unsigned int n_ranks : {1u, 2u, 3u, 5u})
       {
         // As the runs share the cells: runs of whole blocks.
-        const std::vector<unsigned int> block_rank =
-          estep::block_ranks(estep::n_blocks(n_cells), n_ranks);
-        std::vector<unsigned int> cell_rank(n_cells);
-        for (unsigned int e = 0; e < n_cells; ++e)
-          cell_rank[e] = block_rank[e / estep::block_size];
+        std::vector<unsigned int> cell_rank =
+          estep::cell_ranks(n_cells, n_ranks);
         expect_deal_ii_descriptions(mesh,
                                     cell_rank,
                                     n_ranks,

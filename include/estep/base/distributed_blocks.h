@@ -52,6 +52,12 @@ namespace estep
   block_ranks(const unsigned int n_blocks,
               const unsigned int n_ranks = rank_count());
 
+  /** The rank of @p n_ranks that computes each of @p n_cells cells: that of
+   * its block (block_ranks()). */
+  std::vector<unsigned int>
+  cell_ranks(const unsigned int n_cells,
+             const unsigned int n_ranks = rank_count());
+
   /** The cells [begin, end) of @p n_cells that @p rank of @p n_ranks
    * computes: those of its rank_blocks(). */
   BlockRange

@@ -42,7 +42,7 @@ namespace estep
      * @p mesh must outlive this object.
      */
     RankDescriptions(const dealii::Triangulation<3, 3> &mesh,
-                     const std::vector<unsigned int>   &cell_rank,
+                     std::vector<unsigned int>          cell_rank,
                      const unsigned int                 n_ranks);
 
     /** The cells rank @p rank takes, in increasing order: its own and its
