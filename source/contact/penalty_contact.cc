@@ -1,4 +1,4 @@
-#include <estep/base/parallel_blocks.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/contact/penalty_contact.h>
 
 #include <algorithm>
@@ -215,8 +215,8 @@ namespace estep
       double                                                   *derivative,
       unsigned int                                             *count) const
     {
-      // Blocks of pairs (a fixed number each) on the threads, their sums
-      // added in block order.
+      // Blocks of pairs (a fixed number each) on the threads and ranks,
+      // their sums added in block order.
       struct Sums
       {
         double       total, slope;
@@ -231,7 +231,7 @@ namespace estep
         }
       };
       const auto &tris = get_triangles();
-      const Sums  sums = sum_over_blocks<Sums>(
+      const Sums  sums = sum_over_shared_blocks<Sums>(
         std::max(1u, n_blocks(pairs.size(), pairs_per_block)),
         [&](const unsigned int b) {
           const BlockRange block =

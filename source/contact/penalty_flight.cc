@@ -1,4 +1,4 @@
-#include <estep/base/parallel_blocks.h>
+#include <estep/base/distributed_blocks.h>
 #include <estep/contact/penalty_flight.h>
 
 #include <algorithm>
@@ -647,36 +647,34 @@ namespace estep
           cache_a = a;
           cache_b = end;
         }
-      // The pairs of the broad phase whose boxes swept over [a, b] overlap.
+      // The pairs of the broad phase whose boxes swept over [a, b] overlap;
+      // the box of a triangle made once, when a pair first needs it (a
+      // triangle is in several pairs, and most in none).
       const auto &tris = contact.get_triangles();
-      const auto box = [&](const unsigned int t, double *lower, double *upper) {
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            lower[k] = infinity;
-            upper[k] = -infinity;
-          }
+      box_query.resize(tris.size(), 0);
+      swept_boxes.resize(tris.size());
+      ++n_queries;
+      const auto box = [&](const unsigned int t) -> const BoundingBox & {
+        BoundingBox &box = swept_boxes[t];
+        if (box_query[t] == n_queries)
+          return box;
+        box_query[t] = n_queries;
+        box.lower.fill(infinity);
+        box.upper.fill(-infinity);
         for (const unsigned int i : tris[t])
           for (unsigned int k = 0; k < 3; ++k)
             for (const double s : {a, b})
               {
                 const double x = q[3 * i + k] + s * v[3 * i + k];
-                lower[k]       = std::min(lower[k], x - margin);
-                upper[k]       = std::max(upper[k], x + margin);
+                box.lower[k]   = std::min(box.lower[k], x - margin);
+                box.upper[k]   = std::max(box.upper[k], x + margin);
               }
+        return box;
       };
       pairs.clear();
       for (const auto &p : broad_pairs)
-        {
-          double lower[2][3], upper[2][3];
-          box(p.first, lower[0], upper[0]);
-          box(p.second, lower[1], upper[1]);
-          bool overlap = true;
-          for (unsigned int k = 0; k < 3; ++k)
-            overlap = overlap && lower[0][k] <= upper[1][k] &&
-                      lower[1][k] <= upper[0][k];
-          if (overlap)
-            pairs.push_back(p);
-        }
+        if (box(p.first).overlaps(box(p.second)))
+          pairs.push_back(p);
     }
 
 
@@ -730,7 +728,7 @@ namespace estep
       const LineTaylorForm about = LineTaylorForm::about_centre_of(a, b);
       const auto          &tris  = contact.get_triangles();
       const unsigned int   size  = PenaltyContact::pairs_per_block;
-      const LineTaylorForm sum   = sum_over_blocks<LineTaylorForm>(
+      const LineTaylorForm sum   = sum_over_shared_blocks<LineTaylorForm>(
         std::max(1u, n_blocks(pairs.size(), size)), [&](const unsigned int b) {
           const BlockRange block = block_range(b, pairs.size(), size);
           LineTaylorForm   form  = about;

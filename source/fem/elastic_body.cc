@@ -119,10 +119,10 @@ namespace estep
       return sum(square);
     }
 
-    /** The cells assemble_gradient() takes at a time, from a multiple of
-     * it: where the chunks begin changes the bits of the material's batch
-     * call (its vector and scalar parts). */
-    constexpr unsigned int gradient_chunk = P1CellData::gradient_chunk;
+    /** The cells assemble_gradient() takes at a time, from the start of a
+     * run of whole chunks of P1CellData::gradient_chunk cells. */
+    constexpr unsigned int assembly_chunk = 128;
+    static_assert(assembly_chunk % P1CellData::gradient_chunk == 0);
 
     /**
      * The nodal forces |Omega_e| P_e grad N_a of the cells of @p cells, with
@@ -139,7 +139,7 @@ namespace estep
                       const BlockRange  cells,
                       double           *y)
     {
-      constexpr unsigned int chunk = gradient_chunk;
+      constexpr unsigned int chunk = assembly_chunk;
       const double           c     = material.quadratic_modulus();
       Lanes                  F[chunk / n_lanes][9], C[chunk / n_lanes][9];
       double                 J[chunk], df[chunk];

@@ -1,8 +1,10 @@
 // Penalty contact: gradient of g against central differences, the energy of a
-// mesh against a brute-force sum, free-flight evaluation, rigid-motion
-// invariance, bad input.
+// mesh against a brute-force sum, free-flight evaluation (and the candidates
+// of the search's flight on every interval), rigid-motion invariance, bad
+// input.
 
 #include <estep/contact/penalty_contact.h>
+#include <estep/contact/penalty_flight.h>
 
 #include <gtest/gtest.h>
 
@@ -210,6 +212,52 @@ TEST(PenaltyContact, FreeFlightMatchesDirectEvaluation)
     }
   EXPECT_GT(n_positive, 5u);
   EXPECT_EQ(flight.value(0.), 0.);
+}
+
+// The flight the search uses keeps as candidates of a query over [a, b] only
+// the pairs whose boxes swept over [a, b] overlap. Two spheres 0.5 apart
+// approach at unit speed, and the queries come as in a search (the start,
+// then intervals, their halves, smaller ones further on): every query's
+// enclosure must hold the energy evaluated directly, by a broad phase of its
+// own, and every value must be that energy.
+TEST(PenaltyContact, FlightCandidatesKeepEveryPairMeetingOnTheInterval)
+{
+  std::vector<double>          q;
+  std::vector<TriangleIndices> tris;
+  estep_test::add_sphere(q, tris, 0., 0., 0., 1., 8, 12);
+  const std::size_t n_first = q.size();
+  estep_test::add_sphere(q, tris, 2.5, 0., 0., 1., 9, 11);
+  std::vector<double> v(q.size(), 0.);
+  for (std::size_t i = n_first; i < q.size(); i += 3)
+    v[i] = -1.;
+  const PenaltyContact contact(tris, 1e-2);
+  const PenaltyFlight  flight(contact, q.data(), v.data(), q.size());
+  const auto           direct = [&](const double s) {
+    std::vector<double> x(q.size());
+    for (std::size_t k = 0; k < q.size(); ++k)
+      x[k] = q[k] + s * v[k];
+    return contact.energy(x.data(), x.size());
+  };
+  EXPECT_EQ(flight.value(0.), 0.);
+  unsigned int n_positive = 0;
+  for (const auto &[a, b] : std::vector<std::pair<double, double>>{
+         {0., 1.}, {0., 0.5}, {0.5, 1.}, {0.5, 0.75}, {0.6, 0.62}, {0.9, 1.}})
+    {
+      const estep::LineEnclosure e = flight.enclose(a, b);
+      for (unsigned int i = 0; i <= 10; ++i)
+        {
+          const double s = a + (b - a) * i / 10.;
+          const double I = direct(s);
+          EXPECT_TRUE(e.value.contains(I))
+            << "I(" << s << ") = " << I << " outside [" << e.value.lower << ", "
+            << e.value.upper << "], the enclosure over [" << a << ", " << b
+            << "]";
+          n_positive += I > 0.;
+        }
+    }
+  for (unsigned int i = 0; i <= 20; ++i)
+    EXPECT_DOUBLE_EQ(flight.value(i / 20.), direct(i / 20.)) << i / 20.;
+  EXPECT_GT(n_positive, 20u);
 }
 
 TEST(PenaltyContact, RigidMotionInvariance)

@@ -193,6 +193,21 @@ namespace estep
       total += terms[b];
     return total;
   }
+
+  /**
+   * sum_over_distributed_blocks() for blocks that every rank could compute,
+   * their data being on every rank (the contact's candidate pairs): the ranks
+   * share the work of two or more blocks, and compute a single block each
+   * itself, without a collective call. The same sum on every rank, to the
+   * last bit. Collective if @p n_blocks > 1.
+   */
+  template <typename T, typename Term>
+  T
+  sum_over_shared_blocks(const unsigned int n_blocks, const Term &term)
+  {
+    return n_blocks > 1 ? sum_over_distributed_blocks<T>(n_blocks, term) :
+                          T(term(0));
+  }
 } // namespace estep
 
 #endif

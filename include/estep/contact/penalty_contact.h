@@ -160,14 +160,16 @@ namespace estep
         std::vector<std::pair<unsigned int, unsigned int>> pairs;
       };
 
-      /** The sums over candidate pairs run on the threads in blocks of
-       * this many pairs, added in block order (see parallel_blocks.h). */
+      /** The sums over candidate pairs run on the threads and MPI ranks in
+       * blocks of this many pairs, added in block order (see
+       * sum_over_shared_blocks() in distributed_blocks.h). */
       static constexpr unsigned int pairs_per_block = 64;
 
       /**
        * I(q + s v) summed over the candidate @p pairs only; dI/ds into
        * @p derivative and the number of intersecting pairs into @p count
        * (both optional). Shared by the flights of the penalty term.
+       * Collective on several MPI ranks if @p pairs fill more than one block.
        */
       double
       sum_along_line(

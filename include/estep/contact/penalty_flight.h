@@ -8,6 +8,7 @@
 #include <estep/systems/line_taylor_form.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -79,7 +80,10 @@ namespace estep
      * squared_intersection_length_form() / (2 eps).
      *
      * Copies q and v; the PenaltyContact must outlive this object. Not
-     * thread-safe (cached candidates).
+     * thread-safe (cached candidates). On several MPI ranks, every rank
+     * holds the same flight and makes the same calls: the ranks share the
+     * sums over the candidate pairs (sum_over_shared_blocks()), so that the
+     * calls are collective.
      */
     class PenaltyFlight
     {
@@ -144,8 +148,13 @@ namespace estep
       mutable std::vector<std::pair<unsigned int, unsigned int>> broad_pairs;
       /** The candidates of the last query. */
       mutable std::vector<std::pair<unsigned int, unsigned int>> pairs;
-      mutable std::vector<double>                                scratch;
-      mutable double tolerance = -1.;
+      /** Boxes of triangles swept over a query's interval: swept_boxes[t]
+       * is that of query box_query[t] (queries counted by n_queries). */
+      mutable std::vector<BoundingBox>   swept_boxes;
+      mutable std::vector<std::uint64_t> box_query;
+      mutable std::uint64_t              n_queries = 0;
+      mutable std::vector<double>        scratch;
+      mutable double                     tolerance = -1.;
     };
   } // namespace contact
 } // namespace estep

@@ -270,9 +270,8 @@ namespace estep
       {
         /** Its points, as positions among this rank's points. */
         std::vector<unsigned int> positions;
-        /** The cells whose forces its points need: whole chunks of the
-         * gradient's loop (whose alignment changes the bits of the
-         * material's batch call), in increasing order. */
+        /** The cells whose forces its points need: runs of whole chunks
+         * (P1CellData::gradient_chunk), in increasing order. */
         std::vector<BlockRange> cells;
         /** The points these cells touch lie in [lowest, highest]. */
         unsigned int lowest = 0, highest = 0;

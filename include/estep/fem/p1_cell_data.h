@@ -41,10 +41,14 @@ namespace estep
    */
   struct P1CellData
   {
-    /** ElasticBody's gradient adds the cells' forces in chunks of this many
-     * cells (a multiple of 4), whose alignment changes the bits of the
-     * material's batch call. */
-    static constexpr unsigned int gradient_chunk = 128;
+    /** The per-cell arrays hold cells, and the parts of ElasticBody's
+     * gradient on several threads and processes compute them, in chunks of
+     * this many (a multiple of 4): the widest vector of the material's batch
+     * call, 8 doubles, whose vector and scalar parts round differently. A run
+     * of whole chunks puts every cell at the place modulo 8 that it has in
+     * the serial loop's batch calls (see Material::volumetric_derivatives()).
+     */
+    static constexpr unsigned int gradient_chunk = 8;
 
     /** Number of cells (tetrahedra). */
     unsigned int n_cells = 0;

@@ -154,7 +154,18 @@ namespace estep
                                     const double     *w,
                                     const std::size_t n) const;
 
-    /** df[i] = f'(J[i]) for i < n; all J[i] > 0. */
+    /**
+     * df[i] = f'(J[i]) for i < n; all J[i] > 0.
+     *
+     * ElasticBody's gradient calls it on runs of cells that threads and
+     * processes cut differently, but that put every cell at the same place
+     * modulo 8 as the serial loop does, and end where its batches end or at
+     * a multiple of 8 cells. So a run gives the same bits on any number of
+     * threads and processes if df[i] depends on J[i] and on its place in
+     * the batch only through lanes of at most 8 from the batch's start (a
+     * vector path, with a scalar path for the last n mod 8, as batch_log()
+     * takes), not otherwise on its neighbours.
+     */
     virtual void
     volumetric_derivatives(const double     *J,
                            double           *df,
