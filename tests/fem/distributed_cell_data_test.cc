@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iostream>
 #include <vector>
 
 namespace
@@ -122,27 +123,32 @@ namespace
           }
         in_all[k] /= n_padded;
       }
+    std::cout << d.type << ": the ranks of 2 hold " << in_all[0]
+              << " times the cells in all, those of 4 " << in_all[1]
+              << std::endl;
     return in_all;
   }
 
   // gmsh numbers a ball's cells in no compact order: before make_mesh() put
   // them in the order of a Hilbert curve, the first of 2 ranks held (and
   // computed the gradient of) nearly every cell of a ball of gmsh. Along the
-  // curve, each rank holds its cells and a layer of the others'.
+  // curve, each rank holds its cells and a layer of the others' (1.11 and
+  // 1.25 times the cells in all for 2 and 4 ranks).
   TEST(ChunksHeldByRanks, ABallOfGmshInCompactRuns)
   {
     estep::MeshDescription d;
     d.type      = "ball";
     d.mesh_size = 0.08;
     for (const double in_all : held_cells_in_all(d))
-      EXPECT_LT(in_all, 1.6);
+      EXPECT_LT(in_all, 1.3);
   }
 
   // A bar ten times as long as it is thick (15,360 cells): the curve runs
   // through the cube that holds the bar, so that a rank's cells are a length
-  // of it: 1.08 and 1.27 times the cells in all for 2 and 4 ranks. With each
-  // axis scaled to its own extent the runs cut across the bar (1.24 and
-  // 1.63), and in the generator's order (1.28 and 1.85).
+  // of it: 1.05 and 1.16 times the cells in all for 2 and 4 ranks. They were
+  // 1.08 and 1.27 when ranks held chunks of 128 cells, not 8; with chunks of
+  // 128, and each axis scaled to its own extent, the runs cut across the bar
+  // (1.24 and 1.63), and in the generator's order (1.28 and 1.85).
   TEST(ChunksHeldByRanks, ABarInLengths)
   {
     estep::MeshDescription d;
@@ -150,8 +156,8 @@ namespace
     d.generator = "subdivided_hyper_rectangle";
     d.arguments = "40, 4, 4 : 0, 0, 0 : 1, 0.1, 0.1 : false";
     const std::array<double, 2> in_all = held_cells_in_all(d);
-    EXPECT_LT(in_all[0], 1.15);
-    EXPECT_LT(in_all[1], 1.45);
+    EXPECT_LT(in_all[0], 1.07);
+    EXPECT_LT(in_all[1], 1.2);
   }
 
   TEST(GatherEveryCell, OnOneProcessTheDataItself)
