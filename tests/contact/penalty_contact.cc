@@ -27,6 +27,23 @@ namespace
         x = u(rng);
     return T;
   }
+  /** Two spheres of radius 1, 0.5 apart, the second moving towards the
+   * first at unit speed. */
+  struct ApproachingSpheres
+  {
+    std::vector<double>          q, v;
+    std::vector<TriangleIndices> tris;
+
+    ApproachingSpheres()
+    {
+      estep_test::add_sphere(q, tris, 0., 0., 0., 1., 8, 12);
+      const std::size_t n_first = q.size();
+      estep_test::add_sphere(q, tris, 2.5, 0., 0., 1., 9, 11);
+      v.assign(q.size(), 0.);
+      for (std::size_t i = n_first; i < q.size(); i += 3)
+        v[i] = -1.;
+    }
+  };
 } // namespace
 
 TEST(PenaltyContact, GradientOfGapMatchesCentralDifferences)
@@ -178,16 +195,11 @@ TEST(PenaltyContact, MeshEnergyMatchesBruteForceAndGradient)
 
 TEST(PenaltyContact, FreeFlightMatchesDirectEvaluation)
 {
-  std::vector<double>          q;
-  std::vector<TriangleIndices> tris;
-  estep_test::add_sphere(q, tris, 0., 0., 0., 1., 8, 12);
-  const std::size_t n_first = q.size();
-  estep_test::add_sphere(q, tris, 2.5, 0., 0., 1., 9, 11);
-  std::vector<double> v(q.size(), 0.);
-  for (std::size_t i = n_first; i < q.size(); i += 3)
-    v[i] = -1.; // the second sphere moves towards the first
-  PenaltyContact contact(tris, 1e-2);
-  const auto     flight = contact.flight(q.data(), v.data(), q.size(), 1.);
+  const ApproachingSpheres            spheres;
+  const std::vector<double>          &q = spheres.q, &v = spheres.v;
+  const std::vector<TriangleIndices> &tris = spheres.tris;
+  PenaltyContact                      contact(tris, 1e-2);
+  const auto flight = contact.flight(q.data(), v.data(), q.size(), 1.);
   EXPECT_GT(flight.n_candidate_pairs(), 0u);
   unsigned int n_positive = 0;
   for (unsigned int i = 0; i <= 20; ++i)
@@ -222,17 +234,12 @@ TEST(PenaltyContact, FreeFlightMatchesDirectEvaluation)
 // own, and every value must be that energy.
 TEST(PenaltyContact, FlightCandidatesKeepEveryPairMeetingOnTheInterval)
 {
-  std::vector<double>          q;
-  std::vector<TriangleIndices> tris;
-  estep_test::add_sphere(q, tris, 0., 0., 0., 1., 8, 12);
-  const std::size_t n_first = q.size();
-  estep_test::add_sphere(q, tris, 2.5, 0., 0., 1., 9, 11);
-  std::vector<double> v(q.size(), 0.);
-  for (std::size_t i = n_first; i < q.size(); i += 3)
-    v[i] = -1.;
-  const PenaltyContact contact(tris, 1e-2);
-  const PenaltyFlight  flight(contact, q.data(), v.data(), q.size());
-  const auto           direct = [&](const double s) {
+  const ApproachingSpheres            spheres;
+  const std::vector<double>          &q = spheres.q, &v = spheres.v;
+  const std::vector<TriangleIndices> &tris = spheres.tris;
+  const PenaltyContact                contact(tris, 1e-2);
+  const PenaltyFlight flight(contact, q.data(), v.data(), q.size());
+  const auto          direct = [&](const double s) {
     std::vector<double> x(q.size());
     for (std::size_t k = 0; k < q.size(); ++k)
       x[k] = q[k] + s * v[k];

@@ -158,13 +158,13 @@ namespace estep
      * df[i] = f'(J[i]) for i < n; all J[i] > 0.
      *
      * ElasticBody's gradient calls it on runs of cells that threads and
-     * processes cut differently, but that put every cell at the same place
-     * modulo 8 as the serial loop does, and end where its batches end or at
-     * a multiple of 8 cells. So a run gives the same bits on any number of
-     * threads and processes if df[i] depends on J[i] and on its place in
-     * the batch only through lanes of at most 8 from the batch's start (a
-     * vector path, with a scalar path for the last n mod 8, as batch_log()
-     * takes), not otherwise on its neighbours.
+     * processes cut differently. Each run starts a multiple of 8 cells after
+     * a start of the serial loop's batches, and only the body's last batch
+     * has a length that is not a multiple of 8. So a run gives the same bits
+     * on any number of threads and processes if df[i] depends only on J[i],
+     * on i mod 8 and on whether i is among the last n mod 8 entries: a
+     * vector path of at most 8 lanes from the batch's start with a scalar
+     * tail, as batch_log() takes, keeps to this.
      */
     virtual void
     volumetric_derivatives(const double     *J,
