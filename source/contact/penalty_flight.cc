@@ -610,6 +610,8 @@ namespace estep
       , q(q, q + n)
       , v(v, v + n)
       , bvh(contact.get_triangles(), contact.get_exclusion_groups())
+      , swept_boxes(contact.get_triangles().size())
+      , box_query(contact.get_triangles().size(), 0)
     {
       for (std::size_t i = 0; i < n; ++i)
         {
@@ -651,8 +653,6 @@ namespace estep
       // the box of a triangle made once, when a pair first needs it (a
       // triangle is in several pairs, and most in none).
       const auto &tris = contact.get_triangles();
-      box_query.resize(tris.size(), 0);
-      swept_boxes.resize(tris.size());
       ++n_queries;
       const auto box = [&](const unsigned int t) -> const BoundingBox & {
         BoundingBox &box = swept_boxes[t];

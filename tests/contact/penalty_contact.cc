@@ -27,6 +27,7 @@ namespace
         x = u(rng);
     return T;
   }
+
   /** Two spheres of radius 1, 0.5 apart, the second moving towards the
    * first at unit speed. */
   struct ApproachingSpheres

@@ -148,8 +148,9 @@ namespace estep
       mutable std::vector<std::pair<unsigned int, unsigned int>> broad_pairs;
       /** The candidates of the last query. */
       mutable std::vector<std::pair<unsigned int, unsigned int>> pairs;
-      /** Boxes of triangles swept over a query's interval: swept_boxes[t]
-       * is that of query box_query[t] (queries counted by n_queries). */
+      /** Boxes of the triangles swept over a query's interval, made when a
+       * pair first needs them: swept_boxes[t] is that of query box_query[t]
+       * (queries counted by n_queries, from 1). */
       mutable std::vector<BoundingBox>   swept_boxes;
       mutable std::vector<std::uint64_t> box_query;
       mutable std::uint64_t              n_queries = 0;
