@@ -645,6 +645,12 @@ namespace estep
                           end - a,
                           margin + 8. * unit * std::abs(end) * max_v);
           bvh.find_pairs(broad_pairs);
+          // In the order of the triangle numbers, not the tree's, which
+          // depends on the window above: so the pairs of an interval, and
+          // with them the bits of a value, do not depend on the queries
+          // made before (an enclosure's sample is what a later evaluation at
+          // its point gives).
+          std::sort(broad_pairs.begin(), broad_pairs.end());
           cached  = true;
           cache_a = a;
           cache_b = end;

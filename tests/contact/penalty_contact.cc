@@ -11,7 +11,12 @@
 #include "test_meshes.h"
 
 #include <cmath>
+#include <cstring>
+#include <functional>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace estep::contact;
 
@@ -266,6 +271,48 @@ TEST(PenaltyContact, FlightCandidatesKeepEveryPairMeetingOnTheInterval)
   for (unsigned int i = 0; i <= 20; ++i)
     EXPECT_DOUBLE_EQ(flight.value(i / 20.), direct(i / 20.)) << i / 20.;
   EXPECT_GT(n_positive, 20u);
+}
+
+// A flight's value at a point must not depend on the queries made before it:
+// an enclosure's sample is taken for what an evaluation at its point gives,
+// and the search compares values from both. The broad phase a query starts
+// covers a window that depends on the query, and the tree over that window
+// finds the pairs in its own order; the values are the same to the last bit
+// only if the pairs are summed in an order of their own.
+TEST(PenaltyContact, FlightValuesDoNotDependOnEarlierQueries)
+{
+  const ApproachingSpheres   spheres;
+  const std::vector<double> &q = spheres.q, &v = spheres.v;
+  const PenaltyContact       contact(spheres.tris, 1e-2);
+  using Query = std::function<void(const PenaltyFlight &)>;
+  const std::vector<std::pair<std::string, Query>> before = {
+    {"nothing", [](const PenaltyFlight &) {}},
+    {"enclose(0.6, 0.7)", [](const PenaltyFlight &f) { f.enclose(0.6, 0.7); }},
+    {"value(0.2)", [](const PenaltyFlight &f) { f.value(0.2); }},
+    {"enclose(0, 1)", [](const PenaltyFlight &f) { f.enclose(0., 1.); }},
+    {"enclose(0.64, 0.66)",
+     [](const PenaltyFlight &f) { f.enclose(0.64, 0.66); }}};
+  unsigned int n_positive = 0;
+  for (const double s : {0.55, 0.62, 0.65, 0.7, 0.8})
+    {
+      const PenaltyFlight first(contact, q.data(), v.data(), q.size());
+      const auto          reference = first.value_and_derivative(s);
+      n_positive += reference.first > 0.;
+      for (const auto &[name, query] : before)
+        {
+          const PenaltyFlight flight(contact, q.data(), v.data(), q.size());
+          query(flight);
+          const auto value = flight.value_and_derivative(s);
+          EXPECT_EQ(std::memcmp(&value.first, &reference.first, sizeof(double)),
+                    0)
+            << "f(" << s << ") after " << name << ": " << value.first
+            << " against " << reference.first;
+          EXPECT_EQ(
+            std::memcmp(&value.second, &reference.second, sizeof(double)), 0)
+            << "f'(" << s << ") after " << name;
+        }
+    }
+  EXPECT_GE(n_positive, 3u);
 }
 
 TEST(PenaltyContact, RigidMotionInvariance)

@@ -5,7 +5,9 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/fem/elastic_body.h>
+#include <estep/fem/mesh_description.h>
 #include <estep/fem/meshes.h>
 #include <estep/materials/neo_hookean.h>
 
@@ -14,6 +16,7 @@
 #include "test_bodies.h"
 
 #include <cmath>
+#include <cstring>
 #include <map>
 
 namespace
@@ -325,6 +328,46 @@ namespace
                   std::string::npos)
           << e.what();
       }
+  }
+
+  // The gradient's parts on several threads take the blocks of cells, and
+  // a part owns the points whose first cell lies in its blocks. A ball of
+  // gmsh of 3,085 cells has a last block of 13 cells whose points all belong
+  // to earlier cells: on 3 threads (or 4 processes) the part of that block
+  // owns no point, and must compute nothing (it once cleared a reversed
+  // range of its forces and crashed).
+  TEST(ElasticBody, GradientWhenAPartOwnsNoPoint)
+  {
+    estep::MeshDescription ball;
+    ball.type      = "ball";
+    ball.mesh_size = 0.1952;
+    dealii::Triangulation<3> tria;
+    estep::make_mesh(ball, tria);
+    const estep::ElasticBody body(tria,
+                                  std::make_shared<estep::NeoHookean>(1., 1.),
+                                  1.);
+    const estep::P1CellData &data = body.cell_data();
+    ASSERT_EQ(data.n_cells, 3085u);
+    const unsigned int last_block = (data.n_cells - 1) / estep::block_size;
+    for (unsigned int p = 0; p < data.n_points; ++p)
+      ASSERT_LT(data.first_cell[p], last_block * estep::block_size)
+        << "the last block owns point " << p << ": not the case tested";
+
+    const estep::Vector q = estep_test::perturbed(body, 0.01, 5);
+    estep::Vector       serial, parallel;
+    estep::set_thread_count(1);
+    body.gradient(q, serial);
+    for (const unsigned int threads : {2u, 3u, 4u})
+      {
+        estep::set_thread_count(threads);
+        body.gradient(q, parallel);
+        EXPECT_EQ(std::memcmp(parallel.data(),
+                              serial.data(),
+                              serial.size() * sizeof(double)),
+                  0)
+          << threads << " threads";
+      }
+    estep::set_thread_count(1);
   }
 
   TEST(ElasticBody, ClosestPointAndDofHandler)

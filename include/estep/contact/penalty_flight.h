@@ -144,7 +144,8 @@ namespace estep
       mutable bool                    cached  = false;
       mutable double                  cache_a = 0.;
       mutable double                  cache_b = 0.;
-      /** The broad phase's pairs, valid on [cache_a, cache_b]. */
+      /** The broad phase's pairs, valid on [cache_a, cache_b], in increasing
+       * order. */
       mutable std::vector<std::pair<unsigned int, unsigned int>> broad_pairs;
       /** The candidates of the last query. */
       mutable std::vector<std::pair<unsigned int, unsigned int>> pairs;

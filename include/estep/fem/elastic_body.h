@@ -273,7 +273,8 @@ namespace estep
         /** The cells whose forces its points need: runs of whole chunks
          * (P1CellData::gradient_chunk), in increasing order. */
         std::vector<BlockRange> cells;
-        /** The points these cells touch lie in [lowest, highest]. */
+        /** The points these cells touch lie in [lowest, highest] (a part
+         * without points has no cells, and lowest > highest). */
         unsigned int lowest = 0, highest = 0;
       };
       std::vector<Part> parts;
