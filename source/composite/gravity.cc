@@ -88,10 +88,6 @@ namespace estep
       LineEnclosure
       enclose(const double a, const double b) const override
       {
-        // The base's tolerance first: asking for it may change the base's
-        // caches (a PenaltyFlight makes its first one by a broad phase at
-        // s = 0), and with them the last bits of its values after the
-        // enclosure, which its sample must match.
         const double        base_tolerance = base->value_tolerance();
         const LineEnclosure e              = base->enclose(a, b);
 
