@@ -32,6 +32,7 @@
 #include <cctype>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -522,14 +523,17 @@ namespace estep
     }
 
     /** An output failed (a full disk): @p message on standard error and, if
-     * the disk still takes it, in a summary with status failed. */
+     * the disk still takes it, in a summary with status failed. Also on a
+     * process other than the first, whose own output (its piece of the field
+     * output) failed: the first may know nothing of it. */
     void
     report_output_failure(const std::string &summary_file,
                           const RunRecord   &record,
                           const std::string &message)
     {
-      // One write, which the launcher's banner of MPI_Abort cannot split.
-      std::cerr << ("estep: error: " + message + "\n");
+      // Through C's stderr, which the other processes do not silence, and in
+      // one write, which the launcher's banner of MPI_Abort cannot split.
+      std::fputs(("estep: error: " + message + "\n").c_str(), stderr);
       try
         {
           write_file_atomically(

@@ -150,9 +150,14 @@ namespace estep
         data.volume[e] = 0.;
       }
 
-    // Lumped mass with deal.II (row sums of the consistent mass of the scalar
-    // P1 element), checked against the geometry above: volume, rho |Omega_e| /
-    // 4 and the gradients.
+    // The lumped mass of a point: rho |Omega_e| / 4 from each of its cells,
+    // the row sums of the consistent mass of the scalar P1 element. deal.II's
+    // FEValues computes these row sums too, and checks the geometry above
+    // (volume, row sums and gradients); its values are not taken, since
+    // they differ in the last bits with the number of threads (on one
+    // thread it reuses the Jacobian of a cell for the next if that is its
+    // translate, on more it does not), and the masses would make the
+    // trajectory depend on it.
     const dealii::FE_SimplexP<3>   scalar_fe(1);
     const dealii::MappingFE<3>     mapping(scalar_fe);
     const dealii::QGaussSimplex<3> quadrature(2);
@@ -187,7 +192,8 @@ namespace estep
                         dealii::ExcMessage(
                           "ElasticBody: lumped mass check failed on cell " +
                           std::to_string(e) + "."));
-            data.lumped_mass[data.point[a][e]] += row_sum;
+            data.lumped_mass[data.point[a][e]] +=
+              0.25 * density * data.volume[e];
             if (a > 0)
               for (unsigned int j = 0; j < 3; ++j)
                 {

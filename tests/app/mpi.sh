@@ -257,6 +257,24 @@ grep -q '"status": "failed"' broken/summary.json ||
   fail "a failed output on 2 processes: summary.json does not say failed"
 ((code == 4)) && echo "failed output: exit code 4, $(grep -c '^estep: error: Writing the checkpoint' broken.txt) report"
 
+# The same for an output of the second process alone: its piece of a field output snapshot
+# meets a directory where the file goes. The first process knows nothing of it, so the second
+# must say it (its standard output and error are otherwise silent).
+"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10" \
+  --set "Time integration/End time=40" --set "Postprocessors/Field output/Interval=5" \
+  --set "Postprocessors/List=history, field output" --set "Output directory=piece" \
+  > piece.txt 2>&1 &
+pid=$!
+for _ in $(seq 300); do grep -q '"status": "running"' piece/summary.json 2> /dev/null && break; sleep 0.1; done
+mkdir -p piece/fields/solution-00006-p1.vtu/blocked
+wait $pid
+code=$?
+((code == 4)) || fail "a failed piece of the second process: exit code $code, not 4: $(tail -3 piece.txt)"
+reports=$(grep -c "^estep: error: Field output: .*solution-00006-p1.vtu" piece.txt)
+((reports == 1)) ||
+  fail "a failed piece of the second process: $reports reports, not 1: $(head -3 piece.txt)"
+((code == 4 && reports == 1)) && echo "failed piece of the second process: exit code 4, 1 report"
+
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {
   local name=$1 pattern=$2
