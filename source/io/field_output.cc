@@ -336,6 +336,18 @@ namespace estep
         time = in.get<double>();
         file = in.get_string();
       }
+    // The snapshots the series lists must still be there: a series that
+    // goes on would list missing files. (Every process looks, and so
+    // throws alike.)
+    for (const auto &[time, file] : self.series)
+      if (!std::filesystem::is_regular_file(self.directory / file))
+        {
+          std::ostringstream message;
+          message << "Cannot resume the field output: its snapshot <"
+                  << (self.directory / file).string() << "> of t = " << time
+                  << " is missing.";
+          throw std::runtime_error(message.str());
+        }
     if (!self.series.empty())
       {
         const bool hdf5_series =

@@ -235,5 +235,22 @@ for f in summary.json parameters.prm; do
   cmp -s "$f" "tet/$f" || fail "a failed resume changed $f"
 done
 
+# A snapshot of the field output's series deleted before the resume: refused (the series would
+# list a missing file), with the output directory's summary and parameters as they were.
+snap=("$files/spinning_cube.prm" --set "Output directory=snap" --set "Elastic body/Mesh/Subdivisions=2"
+      --set "Postprocessors/List=history, field output" --set "Postprocessors/Field output/Interval=1"
+      --set "Output/Checkpoint interval=2")
+"$ESTEP" "${snap[@]}" --set "Time integration/End time=4" > /dev/null 2>&1 || fail "the snapshot run"
+cp snap/summary.json snap/parameters.prm .
+rm snap/fields/solution-00002.vtu
+"$ESTEP" "${snap[@]}" --set "Time integration/End time=6" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 4 ]] || fail "a snapshot deleted: exit code $rc"
+grep -q "^estep: error: Cannot resume the field output: its snapshot <snap/fields/solution-00002.vtu>" err.txt ||
+  fail "a snapshot deleted: $(cat err.txt)"
+for f in summary.json parameters.prm; do
+  cmp -s "$f" "snap/$f" || fail "a failed resume of the field output changed $f"
+done
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
