@@ -254,13 +254,8 @@ namespace estep
         mine = scratch_mine.data();
       }
     for_each_block(shared.parts.size(), [&](const unsigned int j) {
-      const GradientParts::Part &part = shared.parts[j];
-      // A part whose blocks bring no point of their own (the cells of a
-      // short last block may all have their points in earlier cells) has
-      // no cells either.
-      if (part.positions.empty())
-        return;
-      double *const forces = part_forces[j].data();
+      const GradientParts::Part &part   = shared.parts[j];
+      double *const              forces = part_forces[j].data();
       std::fill(forces + 3 * part.lowest, forces + 3 * part.highest + 4, 0.);
       for (const BlockRange &cells : part.cells)
         assemble_gradient(
@@ -364,6 +359,15 @@ namespace estep
               part.cells.push_back({chunk, end});
           }
       }
+    // A part whose blocks bring no point of their own (the cells of a short
+    // last block may all have their points in earlier cells) has nothing to
+    // compute.
+    parts.erase(std::remove_if(parts.begin(),
+                               parts.end(),
+                               [](const Part &part) {
+                                 return part.positions.empty();
+                               }),
+                parts.end());
   }
 
   std::unique_ptr<FreeFlight>

@@ -138,6 +138,10 @@ namespace estep
             x[a][i] = cell->vertex(a)[i];
         set_cell_geometry(data, e, x);
         data.total_volume += data.volume[e];
+        // The lumped mass: rho |Omega_e| / 4 from each cell of a point, the
+        // row sums of the consistent mass of the scalar P1 element.
+        for (unsigned int a = 0; a < 4; ++a)
+          data.lumped_mass[data.point[a][e]] += 0.25 * density * data.volume[e];
       }
     // The padding of the last batch of four cells: copies of the last cell
     // with volume 0.
@@ -150,14 +154,12 @@ namespace estep
         data.volume[e] = 0.;
       }
 
-    // The lumped mass of a point: rho |Omega_e| / 4 from each of its cells,
-    // the row sums of the consistent mass of the scalar P1 element. deal.II's
-    // FEValues computes these row sums too, and checks the geometry above
-    // (volume, row sums and gradients); its values are not taken, since
-    // they differ in the last bits with the number of threads (on one
-    // thread it reuses the Jacobian of a cell for the next if that is its
-    // translate, on more it does not), and the masses would make the
-    // trajectory depend on it.
+    // deal.II's FEValues checks the geometry above: volume, the lumped
+    // mass's row sums and the gradients. Its values are not taken: they
+    // differ in the last bits with the number of threads (on one thread it
+    // reuses the Jacobian of a cell for the next if that is its translate, on
+    // more it does not), and the masses would make the trajectory depend on
+    // it.
     const dealii::FE_SimplexP<3>   scalar_fe(1);
     const dealii::MappingFE<3>     mapping(scalar_fe);
     const dealii::QGaussSimplex<3> quadrature(2);
@@ -192,8 +194,6 @@ namespace estep
                         dealii::ExcMessage(
                           "ElasticBody: lumped mass check failed on cell " +
                           std::to_string(e) + "."));
-            data.lumped_mass[data.point[a][e]] +=
-              0.25 * density * data.volume[e];
             if (a > 0)
               for (unsigned int j = 0; j < 3; ++j)
                 {

@@ -226,31 +226,36 @@ rc=$?
 grep -q "was written for another initial state" err.txt || fail "changed mesh file: $(cat err.txt)"
 [[ $(wc -l < err.txt) == 1 ]] || fail "changed mesh file: not one line: $(cat err.txt)"
 sed -i 's/^4 0 0 1.1$/4 0 0 1/' tet.msh
+
+# output_refused_on_resume WHAT DIRECTORY PATTERN ARGS...: ARGS with --resume exit with code 4
+# and a message matching PATTERN, and leave DIRECTORY's summary and parameters as the copies in
+# the working directory have them.
+output_refused_on_resume() {
+  local what=$1 directory=$2 pattern=$3 rc f
+  shift 3
+  "$ESTEP" "$@" --resume > out.txt 2> err.txt
+  rc=$?
+  [[ $rc == 4 ]] || fail "$what: exit code $rc"
+  grep -q "$pattern" err.txt || fail "$what: $(cat err.txt)"
+  for f in summary.json parameters.prm; do
+    cmp -s "$f" "$directory/$f" || fail "$what: the failed resume changed $f"
+  done
+}
 truncate -s 300 tet/history.csv
-"$ESTEP" "${tet[@]}" --set "Time integration/End time=0.02" --resume > out.txt 2> err.txt
-rc=$?
-[[ $rc == 4 ]] || fail "history.csv cut short: exit code $rc"
-grep -q "Cannot resume the history file" err.txt || fail "history.csv cut short: $(cat err.txt)"
-for f in summary.json parameters.prm; do
-  cmp -s "$f" "tet/$f" || fail "a failed resume changed $f"
-done
+output_refused_on_resume "history.csv cut short" tet "Cannot resume the history file" \
+  "${tet[@]}" --set "Time integration/End time=0.02"
 
 # A snapshot of the field output's series deleted before the resume: refused (the series would
-# list a missing file), with the output directory's summary and parameters as they were.
+# list a missing file).
 snap=("$files/spinning_cube.prm" --set "Output directory=snap" --set "Elastic body/Mesh/Subdivisions=2"
       --set "Postprocessors/List=history, field output" --set "Postprocessors/Field output/Interval=1"
       --set "Output/Checkpoint interval=2")
 "$ESTEP" "${snap[@]}" --set "Time integration/End time=4" > /dev/null 2>&1 || fail "the snapshot run"
 cp snap/summary.json snap/parameters.prm .
 rm snap/fields/solution-00002.vtu
-"$ESTEP" "${snap[@]}" --set "Time integration/End time=6" --resume > out.txt 2> err.txt
-rc=$?
-[[ $rc == 4 ]] || fail "a snapshot deleted: exit code $rc"
-grep -q "^estep: error: Cannot resume the field output: its snapshot <snap/fields/solution-00002.vtu>" err.txt ||
-  fail "a snapshot deleted: $(cat err.txt)"
-for f in summary.json parameters.prm; do
-  cmp -s "$f" "snap/$f" || fail "a failed resume of the field output changed $f"
-done
+output_refused_on_resume "a snapshot deleted" snap \
+  "^estep: error: Cannot resume the field output: its snapshot <snap/fields/solution-00002.vtu>" \
+  "${snap[@]}" --set "Time integration/End time=6"
 
 echo "$failures failure(s)"
 [[ $failures == 0 ]]

@@ -239,41 +239,34 @@ done
 cmp -s fields-whole/solution.pvd fields-resumed/solution.pvd ||
   fail "field output resumed on 2 processes: solution.pvd differs from the run without a stop"
 
-# An output of the first process that fails mid-run (its first checkpoint meets a directory where
-# the file goes, made once the run is under way): it says so, summary.json says failed, and every
-# process ends with exit code 4 (MPI_Abort) instead of the second stepping on alone.
-"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10" \
-  --set "Time integration/End time=40" --set "Output/Checkpoint interval=10" \
-  --set "Postprocessors/List=history, progress" --set "Output directory=broken" > broken.txt 2>&1 &
-pid=$!
-for _ in $(seq 300); do grep -q '"status": "running"' broken/summary.json 2> /dev/null && break; sleep 0.1; done
-mkdir broken/checkpoint.bin.part
-wait $pid
-code=$?
-((code == 4)) || fail "a failed output on 2 processes: exit code $code, not 4: $(tail -3 broken.txt)"
-grep -q "^estep: error: Writing the checkpoint <broken/checkpoint.bin.part> failed" broken.txt ||
-  fail "a failed output on 2 processes is not reported: $(head -3 broken.txt)"
-grep -q '"status": "failed"' broken/summary.json ||
-  fail "a failed output on 2 processes: summary.json does not say failed"
-((code == 4)) && echo "failed output: exit code 4, $(grep -c '^estep: error: Writing the checkpoint' broken.txt) report"
-
-# The same for an output of the second process alone: its piece of a field output snapshot
-# meets a directory where the file goes. The first process knows nothing of it, so the second
-# must say it (its standard output and error are otherwise silent).
-"${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10" \
-  --set "Time integration/End time=40" --set "Postprocessors/Field output/Interval=5" \
-  --set "Postprocessors/List=history, field output" --set "Output directory=piece" \
-  > piece.txt 2>&1 &
-pid=$!
-for _ in $(seq 300); do grep -q '"status": "running"' piece/summary.json 2> /dev/null && break; sleep 0.1; done
-mkdir -p piece/fields/solution-00006-p1.vtu/blocked
-wait $pid
-code=$?
-((code == 4)) || fail "a failed piece of the second process: exit code $code, not 4: $(tail -3 piece.txt)"
-reports=$(grep -c "^estep: error: Field output: .*solution-00006-p1.vtu" piece.txt)
-((reports == 1)) ||
-  fail "a failed piece of the second process: $reports reports, not 1: $(head -3 piece.txt)"
-((code == 4 && reports == 1)) && echo "failed piece of the second process: exit code 4, 1 report"
+# fails_mid_run NAME BLOCKED PATTERN ARGS...: the cube (ARGS added) on 2 processes into NAME/;
+# once it runs, a directory is made at NAME/BLOCKED, where an output will go. Every process must
+# end with exit code 4 (MPI_Abort) instead of one stepping on alone, with exactly one report
+# matching PATTERN, and summary.json must say failed.
+fails_mid_run() {
+  local name=$1 blocked=$2 pattern=$3 pid code reports
+  shift 3
+  "${mpi[@]}" "$ESTEP" "$files/spinning_cube.prm" --set "Elastic body/Mesh/Subdivisions=10" \
+    --set "Time integration/End time=40" --set "Output directory=$name" "$@" > "$name.txt" 2>&1 &
+  pid=$!
+  for _ in $(seq 300); do grep -q '"status": "running"' "$name/summary.json" 2> /dev/null && break; sleep 0.1; done
+  mkdir -p "$name/$blocked"
+  wait $pid
+  code=$?
+  ((code == 4)) || fail "$name: exit code $code, not 4: $(tail -3 "$name.txt")"
+  reports=$(grep -c "^estep: error: $pattern" "$name.txt")
+  ((reports == 1)) || fail "$name: $reports reports, not 1: $(head -3 "$name.txt")"
+  grep -q '"status": "failed"' "$name/summary.json" || fail "$name: summary.json does not say failed"
+  ((code == 4 && reports == 1)) && echo "$name: exit code 4, 1 report"
+}
+# An output of the first process: its first checkpoint meets a directory where the file goes.
+fails_mid_run broken checkpoint.bin.part "Writing the checkpoint <broken/checkpoint.bin.part> failed" \
+  --set "Output/Checkpoint interval=10" --set "Postprocessors/List=history, progress"
+# An output of the second process alone: its piece of a field output snapshot. The first
+# process knows nothing of it, so the second must say it (its standard output and error are
+# otherwise silent).
+fails_mid_run piece fields/solution-00006-p1.vtu/blocked "Field output: .*solution-00006-p1.vtu" \
+  --set "Postprocessors/Field output/Interval=5" --set "Postprocessors/List=history, field output"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {

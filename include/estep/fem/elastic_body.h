@@ -273,8 +273,7 @@ namespace estep
         /** The cells whose forces its points need: runs of whole chunks
          * (P1CellData::gradient_chunk), in increasing order. */
         std::vector<BlockRange> cells;
-        /** The points these cells touch lie in [lowest, highest] (a part
-         * without points has no cells, and lowest > highest). */
+        /** The points these cells touch lie in [lowest, highest]. */
         unsigned int lowest = 0, highest = 0;
       };
       std::vector<Part> parts;
