@@ -168,6 +168,10 @@ namespace estep
   Checkpoint::Checkpoint(const std::string &file)
     : file(file)
   {
+    std::error_code failure;
+    if (!std::filesystem::is_regular_file(file, failure))
+      throw std::runtime_error("Cannot read the checkpoint <" + file +
+                               ">: it is not a file.");
     std::ifstream in(file, std::ios::binary);
     if (!in)
       throw std::runtime_error("Cannot read the checkpoint <" + file + ">.");

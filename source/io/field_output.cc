@@ -283,7 +283,6 @@ namespace estep
   FieldOutput::start()
   {
     Implementation &self = *implementation;
-    std::filesystem::create_directories(self.directory / "fields");
     // The obstacles do not move: one file, listed in every snapshot.
     std::vector<double>       points;
     std::vector<unsigned int> triangles;
@@ -291,6 +290,12 @@ namespace estep
     self.has_obstacles = !triangles.empty();
     try
       {
+        const std::filesystem::path fields = self.directory / "fields";
+        std::error_code             failure;
+        std::filesystem::create_directories(fields, failure);
+        if (failure)
+          throw std::runtime_error("cannot create the directory <" +
+                                   fields.string() + ">: " + failure.message());
         if (self.format == Format::hdf5)
           self.write_hdf5_mesh(points, triangles);
         else if (self.has_obstacles && self.rank == 0)

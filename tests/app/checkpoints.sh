@@ -209,6 +209,12 @@ printf 'x' | dd of=run/checkpoint.bin bs=1 seek=200 conv=notrunc 2> /dev/null
 rc=$?
 [[ $rc == 1 ]] || fail "damaged checkpoint: exit code $rc"
 grep -q "damaged" err.txt || fail "damaged checkpoint: $(cat err.txt)"
+mv run/checkpoint.bin damaged.bin && mkdir run/checkpoint.bin
+"$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
+rc=$?
+[[ $rc == 1 ]] || fail "a checkpoint that is a directory: exit code $rc"
+grep -qx "estep: error: Cannot read the checkpoint <run/checkpoint.bin>: it is not a file." err.txt || fail "a checkpoint that is a directory: $(cat err.txt)"
+rmdir run/checkpoint.bin && mv damaged.bin run/checkpoint.bin
 
 # A mesh file changed since the checkpoint is refused in one line (exit 1), and a resume that
 # cannot take over an output (history.csv cut short: exit 4) leaves the directory's summary

@@ -319,6 +319,10 @@ expect 4 "cannot prepare the output directory <unprepared>: Cannot rename <unpre
 [[ ! -e unprepared/summary.json.part ]] || fail "a failed summary left summary.json.part behind"
 touch plain_file
 expect 4 "cannot prepare the output directory <plain_file/run>" -- run.prm -s "Output directory=plain_file/run"
+# A regular file where field output's directory should be: one line naming it, exit code 4.
+mkdir -p fields_a_file && touch fields_a_file/fields
+expect 4 "^estep: error: Field output: cannot create the directory <fields_a_file/fields>: Not a directory\.$" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=2" -s "Time integration/End time=0.1" -s "Output directory=fields_a_file"
+[[ $(wc -l < err.txt) == 1 ]] || fail "fields a file: not one line: $(cat err.txt)"
 
 # Field output on a device that fills up (a file size limit of 64 KB): exit code 4, the file
 # named, no crash at exit, and no partial snapshot left behind. The HDF5 mesh file fits, its
