@@ -408,6 +408,14 @@ namespace estep
           "The initial kinetic energy of the " + problem.system->name() +
           " is not finite (" + std::to_string(T0) +
           "): its initial velocity is too large for double precision.");
+      // Before any integrator starts from it, whichever (explicit Newmark
+      // would call it unstable, the implicit methods' solvers fail).
+      if (!std::isfinite(problem.system->energy(problem.q0)))
+        throw std::runtime_error(
+          "The initial configuration of the " + problem.system->name() +
+          " is inadmissible: its potential energy is not finite (a cell "
+          "inverted or flattened, or an atom on another): check its mesh, "
+          "placement and initial displacement.");
     }
 
     /** The integrator chosen in `Time integration`, initialised with the
@@ -523,9 +531,7 @@ namespace estep
     }
 
     /** An output failed (a full disk): @p message on standard error and, if
-     * the disk still takes it, in a summary with status failed. Also on a
-     * process other than the first, whose own output (its piece of the field
-     * output) failed: the first may know nothing of it. */
+     * the disk still takes it, in a summary with status failed. */
     void
     report_output_failure(const std::string &summary_file,
                           const RunRecord   &record,
@@ -667,6 +673,11 @@ namespace estep
     {
       dealii::ParameterHandler prm;
       read_parameters(command, prm);
+      const std::string parameters_as_read = parameters_text(prm);
+      check_same_on_every_rank(checksum(parameters_as_read.data(),
+                                        parameters_as_read.size()),
+                               "parameters from <" + command.input_file +
+                                 "> and the command line");
       RunParameters parameters;
       parameters.parse_parameters(prm);
       // The ranks on one machine share its cores.
@@ -705,17 +716,19 @@ namespace estep
                              warnings_about_input};
 
       const std::filesystem::path directory(parameters.output_directory);
-      const std::string   summary_file = (directory / "summary.json").string();
-      const std::string   parameters_as_read = parameters_text(prm);
-      const std::uint64_t initial_state      = initial_state_checksum(problem);
+      const std::string   summary_file  = (directory / "summary.json").string();
+      const std::uint64_t initial_state = initial_state_checksum(problem);
       std::optional<Checkpoint>    checkpoint;
       std::optional<TimeLoopState> resumed_state;
       if (command.resume)
         {
           const std::string file = (directory / checkpoint_file_name).string();
           if (std::filesystem::exists(file))
+            checkpoint.emplace(file);
+          check_same_on_every_rank(checkpoint ? checkpoint->checksum() : 0,
+                                   "checkpoints <" + file + ">");
+          if (checkpoint)
             {
-              checkpoint.emplace(file);
               checkpoint->check_parameters(parameters_as_read);
               checkpoint->check_initial_state(initial_state);
               resumed_state = checkpoint->restore(*integrator);
@@ -797,13 +810,13 @@ namespace estep
         {
           start_error = error.what();
         }
-      if (largest_over_ranks(!start_error.empty()) != 0)
+      // The output directory does not take the outputs (a full disk): the
+      // run cannot start. The first process says why, whichever failed.
+      if (start_error = first_message_over_ranks(start_error);
+          !start_error.empty())
         {
-          if (start_error.empty())
-            return exit_failed;
-          // The output directory does not take the outputs (a full disk):
-          // the run cannot start.
-          report_output_failure(summary_file, record, start_error);
+          if (writes_output)
+            report_output_failure(summary_file, record, start_error);
           return exit_failed;
         }
 
@@ -819,10 +832,20 @@ namespace estep
                                                          resumed_state);
       if (result.status == RunStatus::failed && rank_count() > 1)
         {
-          // An output failed during the run, of the first rank or of one
-          // that runs on every rank; other ranks may know nothing of it and
-          // still be stepping.
-          report_output_failure(summary_file, record, result.message);
+          // An output failed during the run. One of the first process's
+          // own fails on it alone, while the others may still be stepping:
+          // it reports the failure and ends them all. Field output, the
+          // others' one output, fails on every process at once (they agree
+          // on each snapshot): they leave the report and the end to the
+          // first, unless it does not come.
+          if (writes_output)
+            {
+              report_output_failure(summary_file, record, result.message);
+              end_all_ranks(exit_failed);
+            }
+          every_rank_arrives_within(60.);
+          std::fputs(("estep: error: " + result.message + "\n").c_str(),
+                     stderr);
           end_all_ranks(exit_failed);
         }
       finish_postprocessors(postprocessors, result);
@@ -909,6 +932,7 @@ namespace estep
     // trace.
     dealii::deal_II_exceptions::disable_abort_on_exception();
     dealii::deal_II_exceptions::suppress_stacktrace_in_exceptions();
+    std::string error;
     try
       {
         check_lane_kernel_target();
@@ -987,12 +1011,27 @@ namespace estep
       }
     catch (const dealii::ExceptionBase &exception)
       {
-        std::cerr << ("estep: error: " + one_line_message(exception) + "\n");
+        error = one_line_message(exception);
+      }
+    catch (const std::bad_alloc &)
+      {
+        error = "out of memory (std::bad_alloc).";
       }
     catch (const std::exception &exception)
       {
-        std::cerr << ("estep: error: " + std::string(exception.what()) + "\n");
+        error = exception.what();
       }
+    // An error every process met (bad input, which all check alike) is
+    // reported by the first. One a process met alone leaves the others
+    // waiting for it in a collective call: it reports it itself (the
+    // other processes' std::cerr is silent) and ends them all.
+    const std::string line = "estep: error: " + error + "\n";
+    if (!every_rank_arrives_within(10.))
+      {
+        std::fputs(line.c_str(), stderr);
+        end_all_ranks(exit_input_error);
+      }
+    std::cerr << line;
     finish_mpi();
     return exit_input_error;
   }

@@ -4,14 +4,22 @@
 #include <estep/base/distributed_blocks.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
-#include <numeric>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <utility>
 
 namespace estep
 {
   namespace
   {
     bool distributed = false;
+
+    /** A duplicate of MPI_COMM_WORLD for every_rank_arrives_within() alone. */
+    MPI_Comm error_communicator = MPI_COMM_NULL;
 
     /** MPI counts in ints: large messages go in pieces of this many bytes. */
     constexpr std::size_t message_piece = std::size_t(1) << 30;
@@ -28,6 +36,50 @@ namespace estep
       AssertThrow(code == MPI_SUCCESS,
                   dealii::ExcMessage(std::string(call) + " failed."));
     }
+
+    /** The MPI type of items of @p bytes bytes, so that a message's counts
+     * (ints) count items, not bytes: freed when it goes out of scope. */
+    class ItemType
+    {
+    public:
+      explicit ItemType(const std::size_t bytes)
+      {
+        AssertThrow(bytes <= std::size_t(std::numeric_limits<int>::max()),
+                    dealii::ExcMessage("An item of " + std::to_string(bytes) +
+                                       " bytes is too large for MPI."));
+        check(MPI_Type_contiguous(static_cast<int>(bytes), MPI_BYTE, &type),
+              "MPI_Type_contiguous");
+        check(MPI_Type_commit(&type), "MPI_Type_commit");
+      }
+      ~ItemType()
+      {
+        MPI_Type_free(&type);
+      }
+      ItemType(const ItemType &) = delete;
+      ItemType              &
+      operator=(const ItemType &) = delete;
+      MPI_Datatype type;
+    };
+
+    /** @p counts as MPI's ints, and their exclusive sums, which must fit an
+     * int too (the messages' offsets). */
+    std::pair<std::vector<int>, std::vector<int>>
+    counts_and_displacements(const std::vector<unsigned int> &counts)
+    {
+      std::vector<int> sizes(counts.size()), displacements(counts.size());
+      long long        total = 0;
+      for (std::size_t r = 0; r < counts.size(); ++r)
+        {
+          displacements[r] = static_cast<int>(total);
+          sizes[r]         = static_cast<int>(counts[r]);
+          total += counts[r];
+          AssertThrow(total <= std::numeric_limits<int>::max(),
+                      dealii::ExcMessage(
+                        "A gather between the processes of more than 2^31 "
+                        "items: too large for MPI's counts."));
+        }
+      return {sizes, displacements};
+    }
   } // namespace
 
 
@@ -41,6 +93,8 @@ namespace estep
                 dealii::ExcMessage("distribute_blocks_over_mpi_ranks(): MPI "
                                    "is not running."));
     distributed = distribute;
+    if (distribute && error_communicator == MPI_COMM_NULL)
+      check(MPI_Comm_dup(communicator(), &error_communicator), "MPI_Comm_dup");
   }
 
 
@@ -128,20 +182,22 @@ namespace estep
     const unsigned int ranks = rank_count();
     if (ranks == 1)
       return;
-    std::vector<int> counts(ranks), displacements(ranks);
+    std::vector<unsigned int> blocks_per_rank(ranks);
     for (unsigned int r = 0; r < ranks; ++r)
       {
         const BlockRange blocks = rank_blocks(n_blocks, r);
-        counts[r]               = (blocks.end - blocks.begin) * item_bytes;
-        displacements[r]        = blocks.begin * item_bytes;
+        blocks_per_rank[r]      = blocks.end - blocks.begin;
       }
+    const auto [counts, displacements] =
+      counts_and_displacements(blocks_per_rank);
+    const ItemType item(item_bytes);
     check(MPI_Allgatherv(MPI_IN_PLACE,
                          0,
                          MPI_DATATYPE_NULL,
                          items,
                          counts.data(),
                          displacements.data(),
-                         MPI_BYTE,
+                         item.type,
                          communicator()),
           "MPI_Allgatherv");
   }
@@ -151,26 +207,30 @@ namespace estep
   void
   gather_from_all_ranks(const double                    *mine,
                         const std::vector<unsigned int> &counts,
-                        double                          *all)
+                        double                          *all,
+                        const unsigned int               doubles_per_item)
   {
     const unsigned int ranks = rank_count();
     AssertDimension(counts.size(), ranks);
     if (ranks == 1)
       {
         if (mine != all)
-          std::copy(mine, mine + counts[0], all);
+          std::copy(mine,
+                    mine + std::size_t(counts[0]) * doubles_per_item,
+                    all);
         return;
       }
-    std::vector<int> sizes(counts.begin(), counts.end()), displacements(ranks);
-    std::exclusive_scan(sizes.begin(), sizes.end(), displacements.begin(), 0);
-    const bool in_place = mine == all + displacements[this_rank()];
+    const auto [sizes, displacements] = counts_and_displacements(counts);
+    const bool in_place =
+      mine == all + std::size_t(displacements[this_rank()]) * doubles_per_item;
+    const ItemType item(doubles_per_item * sizeof(double));
     check(MPI_Allgatherv(in_place ? MPI_IN_PLACE : mine,
                          sizes[this_rank()],
-                         MPI_DOUBLE,
+                         item.type,
                          all,
                          sizes.data(),
                          displacements.data(),
-                         MPI_DOUBLE,
+                         item.type,
                          communicator()),
           "MPI_Allgatherv");
   }
@@ -235,6 +295,78 @@ namespace estep
     check(MPI_Allreduce(&value, &largest, 1, MPI_INT, MPI_MAX, communicator()),
           "MPI_Allreduce");
     return largest;
+  }
+
+
+
+  std::string
+  first_message_over_ranks(const std::string &message)
+  {
+    const unsigned int ranks = rank_count();
+    if (ranks == 1)
+      return message;
+    const int mine =
+      message.empty() ? static_cast<int>(ranks) : static_cast<int>(this_rank());
+    int first = mine;
+    check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, communicator()),
+          "MPI_Allreduce");
+    if (first == static_cast<int>(ranks))
+      return {};
+    std::vector<char>  text(message.begin(), message.end());
+    unsigned long long size = text.size();
+    check(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, first, communicator()),
+          "MPI_Bcast");
+    text.resize(size);
+    check(MPI_Bcast(text.data(),
+                    static_cast<int>(size),
+                    MPI_CHAR,
+                    first,
+                    communicator()),
+          "MPI_Bcast");
+    return std::string(text.begin(), text.end());
+  }
+
+
+
+  void
+  check_same_on_every_rank(const unsigned long long value,
+                           const std::string       &what)
+  {
+    if (rank_count() == 1)
+      return;
+    unsigned long long first = value;
+    broadcast_from_first_rank(&first, sizeof(first));
+    const int differs = first != value ? static_cast<int>(this_rank()) : 0;
+    if (const int rank = largest_over_ranks(differs); rank != 0)
+      throw std::runtime_error(
+        "The processes read different " + what + " (those of process " +
+        std::to_string(rank) +
+        " are not the first's): each process reads them itself, so on "
+        "several machines the files must be the same (on a file system they "
+        "share).");
+  }
+
+
+
+  bool
+  every_rank_arrives_within(const double seconds)
+  {
+    if (rank_count() == 1)
+      return true;
+    MPI_Request request;
+    check(MPI_Ibarrier(error_communicator, &request), "MPI_Ibarrier");
+    const auto end =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (;;)
+      {
+        int arrived = 0;
+        check(MPI_Test(&request, &arrived, MPI_STATUS_IGNORE), "MPI_Test");
+        if (arrived)
+          return true;
+        if (std::chrono::steady_clock::now() > end)
+          return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
   }
 
 

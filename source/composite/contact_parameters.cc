@@ -37,7 +37,8 @@ namespace estep
       dealii::Patterns::Double(0.),
       "Impenetrability mode: distance tolerance (absolute length) of the "
       "continuous collision detection; primitives closer than this count as "
-      "touching. Must be positive.");
+      "touching. Must be positive, and at most a thousandth of the bodies' "
+      "shortest boundary edge.");
     prm.leave_subsection();
   }
 

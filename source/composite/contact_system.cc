@@ -302,6 +302,7 @@ namespace estep
       }
 
     // Boundary triangles in global point numbers.
+    double shortest_edge = std::numeric_limits<double>::infinity();
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         const ElasticBody     &body = *bodies[b];
@@ -321,6 +322,8 @@ namespace estep
                   contact::point_at(X.data(), t[(k + 1) % 3]);
                 const contact::Point3 edge = contact::minus(x1, x0);
                 longest = std::max(longest, contact::dot(edge, edge));
+                shortest_edge =
+                  std::min(shortest_edge, contact::dot(edge, edge));
               }
             body_triangles.back().push_back(triangles.size());
             triangles.push_back(global);
@@ -328,6 +331,22 @@ namespace estep
           }
         boundary_points.emplace_back(points.begin(), points.end());
         longest_boundary_edge.push_back(std::sqrt(longest));
+      }
+    shortest_edge = std::sqrt(shortest_edge);
+    // Primitives closer than the tolerance touch: one near an edge's length
+    // would make contacts of bodies still apart, again and again.
+    if (has_constraints() &&
+        !(contact_parameters.ccd_tolerance <= 1e-3 * shortest_edge))
+      {
+        std::ostringstream message;
+        message << "Contact/Collision tolerance = "
+                << contact_parameters.ccd_tolerance
+                << " is not small against the shortest boundary edge of the "
+                   "bodies, "
+                << shortest_edge << ": primitives closer than it count as "
+                << "touching; give at most " << 1e-3 * shortest_edge
+                << " (a thousandth of that edge).";
+        throw std::runtime_error(message.str());
       }
     const unsigned int n_body_triangles = triangles.size();
     for (unsigned int s = 0; s < surfaces.size(); ++s)
@@ -449,6 +468,14 @@ namespace estep
   ContactSystem::free_flight(const Vector &q, const Vector &v) const
   {
     return std::make_unique<ContactFreeFlight>(*this, penalty.get(), q, v);
+  }
+
+
+
+  bool
+  ContactSystem::has_constraints() const
+  {
+    return contact_parameters.mode == ContactParameters::Mode::impenetrability;
   }
 
 

@@ -507,6 +507,15 @@ namespace estep
 
 
 
+  bool
+  HalfSpaceObstacles::has_constraints() const
+  {
+    return obstacle_mode == Mode::impenetrability ||
+           base_system->has_constraints();
+  }
+
+
+
   std::optional<ConstraintEvent>
   HalfSpaceObstacles::first_constraint_event(const Vector &q,
                                              const Vector &v,

@@ -88,6 +88,14 @@ namespace estep
 
 
   bool
+  SystemDecorator::has_constraints() const
+  {
+    return base_system->has_constraints();
+  }
+
+
+
+  bool
   SystemDecorator::has_hessian() const
   {
     return base_system->has_hessian();

@@ -250,7 +250,8 @@ namespace estep
     double              *mine   = g.data() + 3 * shared.first;
     if (!shared.in_order)
       {
-        scratch_mine.resize(shared.doubles_per_rank[this_rank()]);
+        scratch_mine.resize(3 *
+                            std::size_t(shared.points_per_rank[this_rank()]));
         mine = scratch_mine.data();
       }
     for_each_block(shared.parts.size(), [&](const unsigned int j) {
@@ -266,11 +267,11 @@ namespace estep
     });
     if (shared.in_order)
       {
-        gather_from_all_ranks(mine, shared.doubles_per_rank, g.data());
+        gather_from_all_ranks(mine, shared.points_per_rank, g.data(), 3);
         return;
       }
     scratch_all.resize(n_dofs());
-    gather_from_all_ranks(mine, shared.doubles_per_rank, scratch_all.data());
+    gather_from_all_ranks(mine, shared.points_per_rank, scratch_all.data(), 3);
     for (unsigned int k = 0; k < data.n_points; ++k)
       for (unsigned int i = 0; i < 3; ++i)
         g[3 * shared.points[k] + i] = scratch_all[3 * k + i];
@@ -303,12 +304,12 @@ namespace estep
 
     // The points in rank order, each rank's in increasing order: a counting
     // sort, one pass over the points whatever the number of ranks.
-    doubles_per_rank.assign(ranks, 0);
+    points_per_rank.assign(ranks, 0);
     for (unsigned int p = 0; p < data.n_points; ++p)
-      doubles_per_rank[point_rank[p]] += 3;
+      ++points_per_rank[point_rank[p]];
     std::vector<unsigned int> next(ranks, 0);
     for (unsigned int r = 1; r < ranks; ++r)
-      next[r] = next[r - 1] + doubles_per_rank[r - 1] / 3;
+      next[r] = next[r - 1] + points_per_rank[r - 1];
     first = next[me];
     parts.resize(n_parts);
     points.resize(data.n_points);

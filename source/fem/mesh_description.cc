@@ -15,6 +15,7 @@
 #include <estep/fem/meshes.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -217,6 +218,9 @@ namespace estep
       {
         AssertThrow(!d.file_name.empty(),
                     dealii::ExcMessage("Mesh: type 'gmsh' needs a file name."));
+        AssertThrow(!std::filesystem::is_directory(d.file_name),
+                    dealii::ExcMessage("Mesh: the gmsh file '" + d.file_name +
+                                       "' is a directory, not a file."));
         std::ifstream file(d.file_name);
         AssertThrow(file.good(),
                     dealii::ExcMessage("Mesh: cannot open the gmsh file '" +

@@ -190,6 +190,7 @@ namespace estep
     if (payload.size() != size || checksum_of(payload) != check)
       throw std::runtime_error("The checkpoint <" + file +
                                "> is damaged (its checksum does not match).");
+    contents_checksum = check;
     try
       {
         StateReader reader(payload);
@@ -228,6 +229,14 @@ namespace estep
             "); only the end time, the checkpoint entries, the threads and "
             "the output directory may change.");
         }
+  }
+
+
+
+  std::uint64_t
+  Checkpoint::checksum() const
+  {
+    return contents_checksum;
   }
 
 

@@ -99,6 +99,7 @@ namespace estep
       : bodies(bodies)
       , directory(directory)
       , format(format)
+      , start_time(start_time)
       , interval(interval)
       , end_time(end_time)
       , next_time(start_time)
@@ -155,7 +156,7 @@ namespace estep
     const ElasticBodies        &bodies;
     const std::filesystem::path directory;
     const Format                format;
-    const double                interval, end_time;
+    const double                start_time, interval, end_time;
     double                      next_time;
     /** Whether the system has obstacles to draw. */
     bool has_obstacles = false;
@@ -434,7 +435,10 @@ namespace estep
     const double t_end = self.end_time;
     if (integrator.time() < t_end)
       return;
-    const double round_off = 1e-12 * std::max(std::abs(t_end), self.interval);
+    // Of the size of the times compared (not of the interval, which may
+    // be far longer than the run).
+    const double round_off =
+      1e-12 * std::max(std::abs(t_end), std::abs(self.start_time));
     if (!self.series.empty() && self.series.back().first >= t_end - round_off)
       return;
     write_at(t_end);
@@ -468,103 +472,125 @@ namespace estep
     // removed first: renaming over it or truncating it would make ext4 flush
     // the new one to disk (seconds per run on a busy disk).
     std::vector<std::string> files;
-    Vector                   q, v;
-    for (unsigned int b = 0; b < n_bodies; ++b)
+    // The .pvtu files joining the processes' pieces (the first process's).
+    std::vector<std::pair<std::filesystem::path, std::string>> joins;
+    std::string                                                failure;
+    Vector                                                     q, v;
+    try
       {
-        const ElasticBody           &body  = self.bodies.body(b);
-        const Implementation::Piece &piece = self.pieces[b];
-        self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
-        std::vector<double> displacement(q.begin(), q.end()),
-          velocity(v.begin(), v.end()), J, W, stress, von_mises;
-        for (unsigned int k = 0; k < displacement.size(); ++k)
-          displacement[k] -= body.cell_data().reference_position[k];
-        body.cell_fields(q, piece.cells, J, W);
-        body.cell_stresses(q, piece.cells, stress, von_mises);
-        // In the order of snapshot_fields.
-        const std::vector<double> *values[] = {
-          &displacement, &velocity, &J, &W, &stress, &von_mises};
-        std::vector<VtuFile::Field> point_fields, cell_fields;
-        for (unsigned int i = 0; i < snapshot_fields.size(); ++i)
+        for (unsigned int b = 0; b < n_bodies; ++b)
           {
-            const XdmfSeries::Field &field = snapshot_fields[i];
-            (field.on_cells ? cell_fields : point_fields)
-              .push_back({field.name, field.n_components, values[i]});
+            const ElasticBody           &body  = self.bodies.body(b);
+            const Implementation::Piece &piece = self.pieces[b];
+            self.bodies.body_state(snapshot.q, snapshot.v, b, q, v);
+            std::vector<double> displacement(q.begin(), q.end()),
+              velocity(v.begin(), v.end()), J, W, stress, von_mises;
+            for (unsigned int k = 0; k < displacement.size(); ++k)
+              displacement[k] -= body.cell_data().reference_position[k];
+            body.cell_fields(q, piece.cells, J, W);
+            body.cell_stresses(q, piece.cells, stress, von_mises);
+            // In the order of snapshot_fields.
+            const std::vector<double> *values[] = {
+              &displacement, &velocity, &J, &W, &stress, &von_mises};
+            std::vector<VtuFile::Field> point_fields, cell_fields;
+            for (unsigned int i = 0; i < snapshot_fields.size(); ++i)
+              {
+                const XdmfSeries::Field &field = snapshot_fields[i];
+                (field.on_cells ? cell_fields : point_fields)
+                  .push_back({field.name, field.n_components, values[i]});
+              }
+            if (hdf5)
+              {
+                // This process's rows: its share of the points, its cells.
+                const std::string group = body_group(b);
+                for (const VtuFile::Field &field : point_fields)
+                  hdf5->write(group + "/" + field.name,
+                              body.cell_data().n_points,
+                              field.n_components,
+                              piece.point_rows.begin,
+                              std::vector<double>(
+                                field.values->begin() +
+                                  field.n_components * piece.point_rows.begin,
+                                field.values->begin() +
+                                  field.n_components * piece.point_rows.end));
+                for (const VtuFile::Field &field : cell_fields)
+                  hdf5->write(group + "/" + field.name,
+                              body.n_cells(),
+                              field.n_components,
+                              piece.cells.begin,
+                              *field.values);
+                continue;
+              }
+            const std::string base =
+              n_bodies == 1 ? snapshot_name :
+                              snapshot_name + "-" + std::to_string(b + 1);
+            std::string                      file_name = base + ".vtu";
+            std::vector<std::vector<double>> piece_values;
+            if (self.ranks > 1)
+              {
+                // This process's piece: its points' values (the cell fields
+                // are its cells' already).
+                piece_values.reserve(point_fields.size());
+                for (VtuFile::Field &field : point_fields)
+                  {
+                    auto &values = piece_values.emplace_back();
+                    for (const unsigned int p : piece.points)
+                      for (unsigned int c = 0; c < field.n_components; ++c)
+                        values.push_back(
+                          (*field.values)[field.n_components * p + c]);
+                    field.values = &values;
+                  }
+                file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
+              }
+            const std::filesystem::path file =
+              self.directory / "fields" / file_name;
+            std::filesystem::remove(file);
+            unfinished.add(file);
+            std::ofstream out(file);
+            self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
+            out.close();
+            if (!out)
+              throw std::runtime_error("cannot write <" + file.string() + ">");
+            if (self.ranks > 1)
+              {
+                // The first process lists the pieces of all.
+                file_name = base + ".pvtu";
+                if (self.rank == 0)
+                  {
+                    std::vector<std::string> piece_files;
+                    for (unsigned int r = 0; r < self.ranks; ++r)
+                      piece_files.push_back(base + "-p" + std::to_string(r) +
+                                            ".vtu");
+                    std::ostringstream pvtu;
+                    VtuFile::write_parallel(pvtu,
+                                            piece_files,
+                                            point_fields,
+                                            cell_fields);
+                    joins.emplace_back(self.directory / "fields" / file_name,
+                                       pvtu.str());
+                  }
+              }
+            files.push_back(file_name);
           }
         if (hdf5)
-          {
-            // This process's rows: its share of the points, its cells.
-            const std::string group = body_group(b);
-            for (const VtuFile::Field &field : point_fields)
-              hdf5->write(group + "/" + field.name,
-                          body.cell_data().n_points,
-                          field.n_components,
-                          piece.point_rows.begin,
-                          std::vector<double>(
-                            field.values->begin() +
-                              field.n_components * piece.point_rows.begin,
-                            field.values->begin() +
-                              field.n_components * piece.point_rows.end));
-            for (const VtuFile::Field &field : cell_fields)
-              hdf5->write(group + "/" + field.name,
-                          body.n_cells(),
-                          field.n_components,
-                          piece.cells.begin,
-                          *field.values);
-            continue;
-          }
-        const std::string                base      = n_bodies == 1 ?
-                                                       snapshot_name :
-                                                       snapshot_name + "-" + std::to_string(b + 1);
-        std::string                      file_name = base + ".vtu";
-        std::vector<std::vector<double>> piece_values;
-        if (self.ranks > 1)
-          {
-            // This process's piece: its points' values (the cell fields
-            // are its cells' already).
-            piece_values.reserve(point_fields.size());
-            for (VtuFile::Field &field : point_fields)
-              {
-                auto &values = piece_values.emplace_back();
-                for (const unsigned int p : piece.points)
-                  for (unsigned int c = 0; c < field.n_components; ++c)
-                    values.push_back(
-                      (*field.values)[field.n_components * p + c]);
-                field.values = &values;
-              }
-            file_name = base + "-p" + std::to_string(self.rank) + ".vtu";
-          }
-        const std::filesystem::path file =
-          self.directory / "fields" / file_name;
-        std::filesystem::remove(file);
-        unfinished.add(file);
-        std::ofstream out(file);
-        self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
-        out.close();
-        if (!out)
-          throw std::runtime_error("cannot write <" + file.string() + ">");
-        if (self.ranks > 1)
-          {
-            // The first process lists the pieces of all.
-            file_name = base + ".pvtu";
-            if (self.rank == 0)
-              {
-                std::vector<std::string> piece_files;
-                for (unsigned int r = 0; r < self.ranks; ++r)
-                  piece_files.push_back(base + "-p" + std::to_string(r) +
-                                        ".vtu");
-                std::ostringstream pvtu;
-                VtuFile::write_parallel(pvtu,
-                                        piece_files,
-                                        point_fields,
-                                        cell_fields);
-                write_file_atomically(
-                  (self.directory / "fields" / file_name).string(), pvtu.str());
-              }
-          }
-        files.push_back(file_name);
+          hdf5->close();
       }
-    if (hdf5)
-      hdf5->close();
+    catch (const std::runtime_error &error)
+      {
+        failure = error.what();
+      }
+    // On several processes a snapshot is whole only if every process wrote
+    // its part: otherwise each removes its own (unfinished), the series does
+    // not list it, and every process knows why.
+    if (self.ranks > 1)
+      failure = first_message_over_ranks(failure);
+    if (!failure.empty())
+      throw std::runtime_error(failure);
+    for (const auto &[file, text] : joins)
+      {
+        unfinished.add(file);
+        write_file_atomically(file.string(), text);
+      }
     unfinished.keep();
     std::string series_entry;
     if (hdf5)

@@ -109,10 +109,17 @@ namespace estep
       out << ',' << x;
     out << '\n';
     out.flush();
-    bytes_written = out.tellp();
     if (!out)
-      throw OutputFailed("Writing a row of the history file <" + filename +
-                         "> failed (is the disk full?).");
+      {
+        // The part of the row that reached the file goes: the file ends
+        // with its last whole row, as a reader of it expects.
+        out.close();
+        std::error_code ignored;
+        std::filesystem::resize_file(filename, bytes_written, ignored);
+        throw OutputFailed("Writing a row of the history file <" + filename +
+                           "> failed (is the disk full?).");
+      }
+    bytes_written = out.tellp();
   }
 
 

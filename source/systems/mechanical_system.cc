@@ -5,6 +5,14 @@
 
 namespace estep
 {
+  bool
+  MechanicalSystem::has_constraints() const
+  {
+    return false;
+  }
+
+
+
   std::optional<ConstraintEvent>
   MechanicalSystem::first_constraint_event(const Vector &,
                                            const Vector &,

@@ -234,6 +234,13 @@ expect 1 "Material: Problem/System = scene does not read this subsection \(colli
 # So does the subsection of a material model other than the chosen one, at any depth.
 expect 1 "Material/Neo-Hookean quadratic volume: Material/Model = neo-Hookean does not read this subsection \(neo-Hookean quadratic volume does\); a setting there would be ignored\.$" -- "${cube[@]}" -s "Material/Neo-Hookean quadratic volume/Lambda=0.02"
 expect 1 "Scene/Body 2/Material/Neo-Hookean quadratic volume: Scene/Body 2/Material/Model = neo-Hookean does not read this subsection" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_colliding_balls.prm" -s "Scene/Body 2/Material/Neo-Hookean quadratic volume/Mu=0.02" -s "Output directory=scene_model"
+# An integrator without constraint events refuses impenetrable contact, between bodies and with
+# obstacles, instead of letting the bodies pass into each other.
+expect 1 "^estep: error: Time integration/Method: explicit newmark cannot keep bodies apart by impenetrability constraints" -- "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_impenetrable.prm" -s "Time integration/Method=explicit newmark" -s "Output directory=newmark_impenetrable"
+expect 1 "^estep: error: Time integration/Method: explicit newmark cannot keep bodies apart by impenetrability constraints" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_bar_impact.prm" -s "Contact/Mode=impenetrability" -s "Time integration/Method=explicit newmark" -s "Output directory=newmark_wall"
+expect 1 "^estep: error: Time integration/Method: the implicit integrators cannot keep bodies apart by impenetrability constraints" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_cantilever.prm" -s "Scene/Obstacles/Half-spaces=0, 0, -1, 0, 0, 1" -s "Contact/Mode=impenetrability" -s "Time integration/Method=ida bdf" -s "Output directory=implicit_wall"
+# A collision tolerance near the length of a boundary edge would make the balls touch while apart.
+expect 1 "^estep: error: Contact/Collision tolerance = 0.001 is not small against the shortest boundary edge of the bodies, 0\.[0-9]+: primitives closer than it count as touching; give at most" -- "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_impenetrable.prm" -s "Contact/Collision tolerance=0.001" -s "Output directory=large_tolerance"
 # The subsections of other time integrators (one shared by several) and of postprocessors
 # missing from the List: a warning each, at the start and in summary.json, and the run goes on.
 expect 0 "warning: Time integration/Explicit Newmark: Time integration/Method = energy stepping does not read this subsection \(explicit newmark does\); its settings are ignored\.$" -- run.prm -s "Time integration/Explicit Newmark/Time step=0.01" -s "Output directory=ignored"
@@ -336,6 +343,10 @@ EOF
 chmod +x limited
 ESTEP=./limited expect 4 "Field output: cannot write <body1/[a-z_]+> into the HDF5 file <limited_h5/fields/solution-00000\.h5>" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=4" -s "Time integration/End time=0.1" -s "Postprocessors/Field output/Format=hdf5" -s "Output directory=limited_h5"
 [[ -f limited_h5/fields/mesh.h5 && ! -e limited_h5/fields/solution-00000.h5 ]] || fail "a failed HDF5 snapshot left: $(ls limited_h5/fields)"
+# history.csv on such a device: the row that did not fit is not left cut in the middle.
+ESTEP=./limited expect 4 "Writing a row of the history file <limited_history/history.csv> failed" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=2" -s "Time integration/End time=5" -s "Output/History interval=1e-4" -s "Postprocessors/List=history" -s "Output directory=limited_history"
+[[ $(tail -c 1 limited_history/history.csv | od -An -c | tr -d ' ') == '\n' ]] || fail "history.csv on a full device ends inside a row"
+awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' limited_history/history.csv || fail "history.csv on a full device has a row of another length"
 ESTEP=./limited expect 4 "Field output: cannot write <limited_vtu/fields/solution-00000\.vtu>" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=6" -s "Time integration/End time=0.1" -s "Output directory=limited_vtu"
 [[ -z $(ls limited_vtu/fields) ]] || fail "a failed vtu snapshot left: $(ls limited_vtu/fields)"
 grep -q '"status": "failed"' limited_vtu/summary.json || fail "summary.json of a failed field output lacks status failed"

@@ -5,7 +5,9 @@
 # the same end, and one on 1 resumes on 2. Field output writes a piece per process in vtu, and
 # the same datasets as one process in HDF5. An output that fails mid-run, or at the start, ends
 # every process. A system without elastic cells, or with fewer cells
-# than processes, is refused; so is a mesh the first process (which alone builds it) cannot read.
+# than processes, is refused; so is a mesh the first process (which alone builds it) cannot read,
+# and processes that read different input files or checkpoints. An error one process meets alone
+# ends every process, instead of a hang.
 # Compared: the final checkpoint and history.csv, byte for byte (as in threads.sh). summary.json
 # records the cells each process holds.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree;
@@ -267,6 +269,10 @@ fails_mid_run broken checkpoint.bin.part "Writing the checkpoint <broken/checkpo
 # otherwise silent).
 fails_mid_run piece fields/solution-00006-p1.vtu/blocked "Field output: .*solution-00006-p1.vtu" \
   --set "Postprocessors/Field output/Interval=5" --set "Postprocessors/List=history, field output"
+# Neither its piece of that snapshot nor the file joining the pieces stays behind (the first
+# process removes its own when the second's failed).
+ls piece/fields | grep -q "solution-00006-p0.vtu\|solution-00006.pvtu" &&
+  fail "piece: a snapshot that the second process could not write stays: $(ls piece/fields)"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {
@@ -302,6 +308,46 @@ refused one_cell "more than the 1 cells" "$files/spinning_cube.prm" \
 # Only the first process builds the mesh; the error it meets ends every process.
 refused missing_mesh "cannot open the gmsh file 'missing.msh'" "$files/spinning_cube.prm" \
   --set "Elastic body/Mesh/Type=gmsh" --set "Elastic body/Mesh/File name=missing.msh"
+
+# Processes that read different files, as on machines without a shared file system: each
+# process runs in its own working directory (Open MPI's -wdir), with its own copy of run.prm
+# and its own output directory run/.
+mkdir -p first second
+cp "$files/spinning_cube.prm" first/run.prm
+cp "$files/spinning_cube.prm" second/run.prm
+common=(--set "Elastic body/Mesh/Subdivisions=4" --set "Output directory=run"
+        --set "Postprocessors/List=history" --set "Output/Checkpoint interval=0.5"
+        --set "Time integration/End time=2")
+apart() {
+  timeout 120 "$MPIEXEC" --bind-to none --oversubscribe -np 1 -wdir "$work/first" "$ESTEP" run.prm \
+    "${common[@]}" "$@" : -np 1 -wdir "$work/second" "$ESTEP" run.prm "${common[@]}" "$@"
+}
+# The copies differ: refused in one line by every process alike.
+sed -i 's/set Energy step *=.*/set Energy step = 2e-5/' second/run.prm
+cmp -s first/run.prm second/run.prm && fail "the second copy of run.prm was not changed"
+apart > apart.txt 2>&1
+code=$?
+((code == 1)) || fail "different input files: exit code $code, not 1"
+[[ $(grep -c "^estep: error: The processes read different parameters from <run.prm> and the command line (those of process 1 are not the first's)" apart.txt) == 1 && $(grep -c "^estep:" apart.txt) == 1 ]] ||
+  fail "different input files: not one line: $(cat apart.txt)"
+# The second's copy is malformed: the second process alone fails, while the first waits for it
+# in a collective call; it says why and ends both (through MPI_Abort) instead of a hang.
+echo "set No such entry = 1" >> second/run.prm
+apart > apart.txt 2>&1
+code=$?
+((code != 0 && code != 124)) || fail "a malformed input file on the second process: exit code $code (124: a hang)"
+[[ $(grep -c "^estep: error: .*No such entry" apart.txt) == 1 && $(grep -c "^estep: error:" apart.txt) == 1 ]] ||
+  fail "a malformed input file on the second process: not one report: $(head -5 apart.txt)"
+((code != 0 && code != 124)) && echo "malformed input on the second process alone: exit code $code, one report"
+# The same copies, but only the first has a checkpoint: --resume is refused in one line.
+cp first/run.prm second/run.prm
+"$ESTEP" first/run.prm "${common[@]}" --set "Output directory=first/run" > /dev/null 2>&1 ||
+  fail "the run that writes the first's checkpoint"
+apart --resume > apart.txt 2>&1
+code=$?
+((code == 1)) || fail "different checkpoints: exit code $code, not 1"
+grep -q "^estep: error: The processes read different checkpoints <run/checkpoint.bin> (those of process 1 are not the first's)" apart.txt ||
+  fail "different checkpoints: $(cat apart.txt)"
 
 if ((failures > 0)); then
   echo "$failures failures"

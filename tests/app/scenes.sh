@@ -215,6 +215,11 @@ expect_error() {
 cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time integration/End time=0.01")
 expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
 expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
+# An initial displacement that inverts cells: refused before any output, by every integrator.
+for method in "energy stepping" "explicit newmark" "ida bdf"; do
+  expect_error "The initial configuration of the scene is inadmissible: its potential energy is not finite" "$files/scene_cantilever.prm" -s "Output directory=inverted" -s "Scene/Body 1/Initial displacement/Function expression=-2*x; 0; 0" -s "Time integration/Method=$method"
+done
+[[ ! -e inverted ]] || fail "a refused initial configuration wrote an output directory"
 expect_error "Scene/Obstacles/Surface files: STL file <missing.stl>: cannot be opened" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Surface files=missing.stl"
 expect_error "Scene: Body 1 intersects obstacle floor.stl at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
 expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> is not six numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -223,6 +224,14 @@ namespace
     EXPECT_NE(error_of(d).find("cannot open the gmsh file 'no_such_file.msh'"),
               std::string::npos)
       << error_of(d);
+
+    d.file_name = "a_directory.msh";
+    std::filesystem::create_directory(d.file_name);
+    EXPECT_NE(error_of(d).find(
+                "the gmsh file 'a_directory.msh' is a directory, not a file."),
+              std::string::npos)
+      << error_of(d);
+    std::filesystem::remove(d.file_name);
   }
 
   TEST(Meshes, BadDescriptions)

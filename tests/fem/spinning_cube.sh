@@ -46,6 +46,10 @@ small=(-s "Elastic body/Mesh/Subdivisions=2" -s "Postprocessors/List=field outpu
 "$ESTEP" "$prm" "${small[@]}" -s "Output directory=tenths" -s "Time integration/End time=0.3" \
   -s "Postprocessors/Field output/Interval=0.1" > tenths.log 2>&1 || { cat tenths.log; failures=$((failures + 1)); }
 [[ $(ls tenths/fields | wc -l) == 4 ]] || { echo "to t = 0.3 every 0.1: snapshots at $(times tenths)"; failures=$((failures + 1)); }
+# An interval far longer than the run: the start and the end.
+"$ESTEP" "$prm" "${small[@]}" -s "Output directory=long" -s "Time integration/End time=0.02" \
+  -s "Postprocessors/Field output/Interval=1e300" > long.log 2>&1 || { cat long.log; failures=$((failures + 1)); }
+[[ $(times long) == "0 0.02 " ]] || { echo "an interval of 1e300: snapshots at $(times long), expected 0 0.02"; failures=$((failures + 1)); }
 
 /usr/bin/python3 - <<'PY' || failures=$((failures + 1))
 import csv, json, sys

@@ -4,6 +4,7 @@
 #include <estep/base/parallel_blocks.h>
 
 #include <cstddef>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -77,14 +78,15 @@ namespace estep
                     const unsigned int n_blocks);
 
   /**
-   * Rank r's @p counts[r] doubles, concatenated in rank order into @p all, on
-   * every rank (this rank's are @p mine, which may already be their place
-   * in @p all). Collective.
+   * Rank r's @p counts[r] items of @p doubles_per_item doubles each,
+   * concatenated in rank order into @p all, on every rank (this rank's are
+   * @p mine, which may already be their place in @p all). Collective.
    */
   void
   gather_from_all_ranks(const double                    *mine,
                         const std::vector<unsigned int> &counts,
-                        double                          *all);
+                        double                          *all,
+                        const unsigned int               doubles_per_item = 1);
 
   /**
    * @p size bytes at @p bytes, on every rank as the first rank holds them.
@@ -145,6 +147,33 @@ namespace estep
   /** The largest of the ranks' @p value. Collective. */
   int
   largest_over_ranks(const int value);
+
+  /**
+   * The @p message of the lowest rank whose message is not empty, on every
+   * rank (empty if all are): an error some ranks met, known to all.
+   * Collective.
+   */
+  std::string
+  first_message_over_ranks(const std::string &message);
+
+  /**
+   * Throw std::runtime_error on every rank if a rank's @p value differs
+   * from the first rank's; @p what (e.g. "checkpoints <run/checkpoint.bin>")
+   * names what the values stand for, which each process read for itself.
+   * Collective.
+   */
+  void
+  check_same_on_every_rank(const unsigned long long value,
+                           const std::string       &what);
+
+  /**
+   * Whether every rank calls this within @p seconds (on a communicator of
+   * its own, so that ranks waiting in another collective call cannot meet
+   * it): after an error, whether the other ranks met it too, or wait for this
+   * one in vain. Collective if they all call it.
+   */
+  bool
+  every_rank_arrives_within(const double seconds);
 
   /**
    * The number of ranks on this machine (1 without MPI): the machine's cores

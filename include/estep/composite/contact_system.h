@@ -128,6 +128,10 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const override;
 
+    /** True in impenetrability mode. */
+    bool
+    has_constraints() const override;
+
     /**
      * For each body b = 1, 2, ...: "V<b>_x", "V<b>_y", "V<b>_z" (centre-of-mass
      * velocity) and "Omega<b>_x", ... (angular momentum about its centre of

@@ -143,6 +143,10 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const override;
 
+    /** True in impenetrability mode, and if the base has constraints. */
+    bool
+    has_constraints() const override;
+
     /** The base's Hessian plus n n^T / eps on the diagonal block of each
      * point behind a plane (penalty mode). Throws std::logic_error if the
      * base's sparsity pattern lacks an entry of such a block. */

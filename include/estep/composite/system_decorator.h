@@ -51,6 +51,9 @@ namespace estep
                            const double  s_max) const override;
 
     bool
+    has_constraints() const override;
+
+    bool
     has_hessian() const override;
 
     const dealii::SparsityPattern &

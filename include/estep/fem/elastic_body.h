@@ -259,9 +259,8 @@ namespace estep
       /** The numbers of threads and ranks it was built for. */
       unsigned int threads = 0, ranks = 0;
       /** The points of each rank in increasing order, rank after rank, how
-       * many doubles (3 per point) each rank has, and where this rank's
-       * points start. */
-      std::vector<unsigned int> points, doubles_per_rank;
+       * many points each rank has, and where this rank's points start. */
+      std::vector<unsigned int> points, points_per_rank;
       unsigned int              first = 0;
       /** Whether points is 0, 1, 2, ...: then each rank's gradient is
        * computed, and gathered, in place. */

@@ -58,6 +58,10 @@ namespace estep
     void
     check_initial_state(const std::uint64_t initial_state) const;
 
+    /** The checksum of the checkpoint's contents. */
+    std::uint64_t
+    checksum() const;
+
     /** Restore the integrator's state; returns the time loop's. */
     TimeLoopState
     restore(TimeIntegrator &integrator) const;
@@ -72,7 +76,8 @@ namespace estep
            const bool only_those_on_every_rank = false) const;
 
   private:
-    std::string file;
+    std::string   file;
+    std::uint64_t contents_checksum;
     /** The fixed entries, one "Section/Entry = value" per line. */
     std::string              parameters;
     std::uint64_t            initial_state_checksum;

@@ -93,6 +93,11 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const;
 
+    /** Whether first_constraint_event() can report events: an integrator
+     * that does not ask for them cannot run the system. The default: false. */
+    virtual bool
+    has_constraints() const;
+
     /**
      * @name Optional second derivatives (used by the implicit integrators).
      * @{
