@@ -779,17 +779,24 @@ namespace estep
                                      record,
                                      checkpoint.has_value());
           }
+        catch (const std::filesystem::filesystem_error &error)
+          {
+            preparation_error =
+              "<" + error.path1().string() + ">: " + error.code().message();
+          }
         catch (const std::exception &error)
           {
             preparation_error = one_line_message(error);
           }
       if (largest_over_ranks(!preparation_error.empty()) != 0)
         {
+          // The summary, if written already, says running: now failed.
           if (!preparation_error.empty())
-            std::cerr << ("estep: error: cannot prepare the output "
-                          "directory <" +
-                          directory.string() + ">: " + preparation_error +
-                          "\n");
+            report_output_failure(summary_file,
+                                  record,
+                                  "cannot prepare the output directory <" +
+                                    directory.string() +
+                                    ">: " + preparation_error);
           return exit_failed;
         }
       try

@@ -325,7 +325,12 @@ mkdir -p unprepared/summary.json
 expect 4 "cannot prepare the output directory <unprepared>: Cannot rename <unprepared/summary.json.part>" -- run.prm -s "Output directory=unprepared"
 [[ ! -e unprepared/summary.json.part ]] || fail "a failed summary left summary.json.part behind"
 touch plain_file
-expect 4 "cannot prepare the output directory <plain_file/run>" -- run.prm -s "Output directory=plain_file/run"
+expect 4 "^estep: error: cannot prepare the output directory <plain_file/run>: <plain_file/run>: Not a directory$" -- run.prm -s "Output directory=plain_file/run"
+# An earlier output's name taken by a directory that is not empty: the path named, without the
+# C++ library's wording, and the summary written first says failed.
+mkdir -p taken/solution.pvd/keep
+expect 4 "^estep: error: cannot prepare the output directory <taken>: <taken/solution.pvd>: Directory not empty$" -- run.prm -s "Output directory=taken"
+grep -q '"status": "failed"' taken/summary.json || fail "an output directory that cannot be prepared: summary.json does not say failed"
 # A regular file where field output's directory should be: one line naming it, exit code 4.
 mkdir -p fields_a_file && touch fields_a_file/fields
 expect 4 "^estep: error: Field output: cannot create the directory <fields_a_file/fields>: Not a directory\.$" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mesh/Subdivisions=2" -s "Time integration/End time=0.1" -s "Output directory=fields_a_file"
