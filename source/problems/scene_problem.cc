@@ -25,6 +25,7 @@
 #include <estep/problems/parsed_vector_field.h>
 #include <estep/problems/problem.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -57,17 +58,27 @@ namespace estep
             {
               x.clear();
             }
-          const double norm =
-            x.size() == 6 ? std::sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5]) :
-                            0.;
-          if (!(norm > 0.) || !std::isfinite(norm))
+          if (x.size() != 6 ||
+              !std::all_of(x.begin(), x.end(), [](const double value) {
+                return std::isfinite(value);
+              }))
             throw std::runtime_error(
               "Scene/Obstacles/Half-spaces: <" + item +
-              "> is not six numbers p_x, p_y, p_z, n_x, n_y, n_z with a "
-              "nonzero normal.");
+              "> is not six finite numbers p_x, p_y, p_z, n_x, n_y, n_z.");
+          // Scaled by its largest component first, so that the norm of a
+          // normal of large components does not overflow.
+          const double largest =
+            std::max({std::abs(x[3]), std::abs(x[4]), std::abs(x[5])});
+          if (!(largest > 0.))
+            throw std::runtime_error("Scene/Obstacles/Half-spaces: <" + item +
+                                     "> has a zero normal.");
+          const std::array<double, 3> n = {
+            {x[3] / largest, x[4] / largest, x[5] / largest}};
+          const double norm =
+            std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
           HalfSpace plane;
           plane.point  = {{x[0], x[1], x[2]}};
-          plane.normal = {{x[3] / norm, x[4] / norm, x[5] / norm}};
+          plane.normal = {{n[0] / norm, n[1] / norm, n[2] / norm}};
           planes.push_back(plane);
         }
       return planes;

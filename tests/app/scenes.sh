@@ -222,7 +222,16 @@ done
 [[ ! -e inverted ]] || fail "a refused initial configuration wrote an output directory"
 expect_error "Scene/Obstacles/Surface files: STL file <missing.stl>: cannot be opened" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Surface files=missing.stl"
 expect_error "Scene: Body 1 intersects obstacle floor.stl at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
-expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> is not six numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
+expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> has a zero normal\.$" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
+expect_error "Scene/Obstacles/Half-spaces: <nan, 0, 0, 0, 0, 1> is not six finite numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=nan, 0, 0, 0, 0, 1"
+# A normal of large components is the unit normal (its norm would overflow).
+for normal in 1 1e300; do
+  "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=normal_$normal" -s "Time integration/End time=0.01" \
+    -s "Postprocessors/List=history" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, $normal" > /dev/null 2>&1 ||
+    fail "the floor of normal (0, 0, $normal)"
+done
+cmp -s normal_1/history.csv normal_1e300/history.csv || fail "a floor of normal (0, 0, 1e300) is not that of (0, 0, 1)"
+expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 1> is not six finite numbers" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 1"
 expect_error "Contact/Penalty parameter: only Mode = penalty uses it \(Mode = impenetrability\)" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Penalty parameter=1e-5"
 expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Contact/Mode=none"
 expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
