@@ -178,11 +178,12 @@ namespace estep
           else if (arg == "--threads")
             {
               const std::string n = (i + 1 < argc) ? argv[++i] : "";
-              if (n.empty() ||
-                  n.find_first_not_of("0123456789") != std::string::npos)
+              if (n.empty() || n.size() > 4 ||
+                  n.find_first_not_of("0123456789") != std::string::npos ||
+                  std::stoi(n) > 4096)
                 throw std::runtime_error(
-                  "The option --threads needs a number of threads (0 or more; "
-                  "0: one per core), not <" +
+                  "The option --threads needs a number of threads from 0 to "
+                  "4096 (0: one per core), not <" +
                   n + ">.");
               command.overrides.push_back("Threads=" + n);
             }

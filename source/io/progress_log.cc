@@ -87,20 +87,24 @@ namespace estep
       std::chrono::duration<double>(last_line - wall_start).count();
     const double done =
       (integrator.time() - start_time) / (end_time - start_time);
-    char line[256];
+    const double left = integrator.time() > first_time ?
+                          wall * (end_time - integrator.time()) /
+                            (integrator.time() - first_time) :
+                          0.;
+    char         line[256];
+    // Whole seconds, or three digits of a time too long to wait for.
     std::snprintf(line,
                   sizeof(line),
-                  "estep: t = %.6g (%.1f%%), %llu steps, %.0f steps/s, "
-                  "%.1f s elapsed, %.0f s left",
+                  left < 1e9 ? "estep: t = %.6g (%.1f%%), %llu steps, %.0f "
+                               "steps/s, %.1f s elapsed, %.0f s left" :
+                               "estep: t = %.6g (%.1f%%), %llu steps, %.0f "
+                               "steps/s, %.1f s elapsed, %.3g s left",
                   integrator.time(),
                   100. * done,
                   static_cast<unsigned long long>(integrator.n_steps()),
                   (integrator.n_steps() - first_step) / (wall > 0. ? wall : 1.),
                   wall,
-                  integrator.time() > first_time ?
-                    wall * (end_time - integrator.time()) /
-                      (integrator.time() - first_time) :
-                    0.);
+                  left);
     if (to_standard_output)
       std::cout << line << suffix << std::endl;
     out << line << suffix << std::endl;

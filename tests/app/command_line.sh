@@ -124,7 +124,17 @@ expect 1 "Unknown option <--frobnicate>" -- --frobnicate run.prm
 printf 'subsection Time integration\n  set Method = {nergy stepping\nend\n' > brace.prm
 expect 1 "Time integration/Method: the value <\{nergy stepping> does not match" -- brace.prm
 expect 1 "needs a number of threads" -- run.prm --threads
-expect 1 "The option --threads needs a number of threads \(0 or more; 0: one per core\), not <-2>\.$" -- run.prm --threads -2
+expect 1 "The option --threads needs a number of threads from 0 to 4096 \(0: one per core\), not <-2>\.$" -- run.prm --threads -2
+expect 1 "The option --threads needs a number of threads from 0 to 4096 \(0: one per core\), not <100000>\.$" -- run.prm --threads 100000
+# The progress line of an end time too far to reach gives three digits of the time left, not
+# three hundred.
+"$ESTEP" run.prm -s "Time integration/End time=1e300" -s "Output/History interval=0" -s "Postprocessors/List=progress" \
+  -s "Postprocessors/Progress/Interval=0.1" -s "Output directory=far" > far.txt 2>&1 &
+far=$!
+sleep 2
+kill -TERM $far
+wait $far
+grep -Eq "s elapsed, [0-9.]+e\+[0-9]+ s left$" far/log.txt || fail "the progress line of an end time of 1e300: $(tail -c 300 far/log.txt)"
 expect 1 "Threads.*does not match" -- run.prm -s "Threads=-2"
 # Started as several processes by a launcher whose MPI is not estep's (its environment says 2
 # processes, as Open MPI's and MPICH's set it, but MPI sees 1): the first says so once; the
