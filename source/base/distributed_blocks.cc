@@ -312,7 +312,7 @@ namespace estep
           "MPI_Allreduce");
     if (first == static_cast<int>(ranks))
       return {};
-    std::vector<char>  text(message.begin(), message.end());
+    std::string        text = message;
     unsigned long long size = text.size();
     check(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, first, communicator()),
           "MPI_Bcast");
@@ -323,7 +323,7 @@ namespace estep
                     first,
                     communicator()),
           "MPI_Bcast");
-    return std::string(text.begin(), text.end());
+    return text;
   }
 
 

@@ -65,20 +65,15 @@ namespace estep
             throw std::runtime_error(
               "Scene/Obstacles/Half-spaces: <" + item +
               "> is not six finite numbers p_x, p_y, p_z, n_x, n_y, n_z.");
-          // Scaled by its largest component first, so that the norm of a
-          // normal of large components does not overflow.
-          const double largest =
-            std::max({std::abs(x[3]), std::abs(x[4]), std::abs(x[5])});
-          if (!(largest > 0.))
+          // std::hypot: the norm of a normal of large components does not
+          // overflow.
+          const double norm = std::hypot(x[3], x[4], x[5]);
+          if (!(norm > 0.))
             throw std::runtime_error("Scene/Obstacles/Half-spaces: <" + item +
                                      "> has a zero normal.");
-          const std::array<double, 3> n = {
-            {x[3] / largest, x[4] / largest, x[5] / largest}};
-          const double norm =
-            std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
           HalfSpace plane;
           plane.point  = {{x[0], x[1], x[2]}};
-          plane.normal = {{n[0] / norm, n[1] / norm, n[2] / norm}};
+          plane.normal = {{x[3] / norm, x[4] / norm, x[5] / norm}};
           planes.push_back(plane);
         }
       return planes;
