@@ -574,12 +574,38 @@ namespace estep
     }
 
     /**
-     * Run the time loop from the start, or from @p resumed_state; SIGINT and
-     * SIGTERM end it after the current step, with a checkpoint and its
-     * summary (status interrupted).
+     * While it lives, SIGINT and SIGTERM do not end the process: they ask
+     * the time loop to end the run after its current step, with a checkpoint
+     * and the summary (status interrupted). It lives from before the output
+     * directory is written, so that no signal leaves a summary that says
+     * running.
      */
+    class InterruptionRequests
+    {
+    public:
+      InterruptionRequests()
+      {
+        const auto request = [](const int signal) {
+          request_interruption(signal);
+        };
+        std::signal(SIGINT, request);
+        std::signal(SIGTERM, request);
+      }
+
+      ~InterruptionRequests()
+      {
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+      }
+
+      InterruptionRequests(const InterruptionRequests &) = delete;
+      InterruptionRequests &
+      operator=(const InterruptionRequests &) = delete;
+    };
+
+    /** Run the time loop from the start, or from @p resumed_state. */
     TimeLoopResult
-    run_time_loop_with_signals(
+    run_or_resume_time_loop(
       TimeIntegrator                                    &integrator,
       const RunParameters                               &parameters,
       const std::string                                 &parameters_as_read,
@@ -610,18 +636,11 @@ namespace estep
       std::vector<RunObserver *> observers;
       for (const auto &postprocessor : postprocessors)
         observers.push_back(postprocessor.get());
-      const auto interrupt = [](const int signal) {
-        request_interruption(signal);
-      };
-      std::signal(SIGINT, interrupt);
-      std::signal(SIGTERM, interrupt);
-      const TimeLoopResult result =
-        resumed_state ?
-          resume_time_loop(integrator, settings, observers, *resumed_state) :
-          run_time_loop(integrator, settings, observers);
-      std::signal(SIGINT, SIG_DFL);
-      std::signal(SIGTERM, SIG_DFL);
-      return result;
+      return resumed_state ? resume_time_loop(integrator,
+                                              settings,
+                                              observers,
+                                              *resumed_state) :
+                             run_time_loop(integrator, settings, observers);
     }
 
     /** Let every postprocessor finish; one whose output cannot be written
@@ -771,7 +790,8 @@ namespace estep
             std::cerr << ("estep: error: " + start_error + "\n");
           return exit_failed;
         }
-      std::string preparation_error;
+      const InterruptionRequests interruption_requests;
+      std::string                preparation_error;
       if (writes_output)
         try
           {
@@ -832,12 +852,12 @@ namespace estep
       if (writes_output)
         for (const std::string &warning : warnings_about_input)
           std::cerr << ("estep: warning: " + warning + "\n");
-      TimeLoopResult result = run_time_loop_with_signals(*integrator,
-                                                         parameters,
-                                                         parameters_as_read,
-                                                         initial_state,
-                                                         postprocessors,
-                                                         resumed_state);
+      TimeLoopResult result = run_or_resume_time_loop(*integrator,
+                                                      parameters,
+                                                      parameters_as_read,
+                                                      initial_state,
+                                                      postprocessors,
+                                                      resumed_state);
       if (result.status == RunStatus::failed && rank_count() > 1)
         {
           // An output failed during the run. One of the first process's
@@ -857,6 +877,7 @@ namespace estep
           end_all_ranks(exit_failed);
         }
       finish_postprocessors(postprocessors, result);
+      std::string summary_error;
       try
         {
           // Every rank computes the summary (its energies are collective).
@@ -869,8 +890,9 @@ namespace estep
         {
           if (result.status != RunStatus::failed)
             throw;
-          // The disk that failed the run may not take the summary either.
-          std::cerr << ("estep: error: " + std::string(error.what()) + "\n");
+          // The disk that failed the run may not take the summary either:
+          // said after the failure itself.
+          summary_error = error.what();
         }
 
       std::cout << "estep: " << integrator->name() << " on the " << problem.name
@@ -892,7 +914,13 @@ namespace estep
       for (const std::string &warning : result.warnings)
         std::cerr << ("estep: warning: " + warning + "\n");
       if (!result.message.empty())
-        std::cerr << ("estep: " + result.message + "\n");
+        std::cerr << ("estep: " +
+                      std::string(
+                        result.status == RunStatus::failed ? "error: " : "") +
+                      result.message + "\n");
+      if (!summary_error.empty())
+        std::cerr << ("estep: error: " + summary_error +
+                      " The summary could not be updated either.\n");
       return exit_code(result);
     }
   } // namespace
@@ -940,6 +968,10 @@ namespace estep
     // trace.
     dealii::deal_II_exceptions::disable_abort_on_exception();
     dealii::deal_II_exceptions::suppress_stacktrace_in_exceptions();
+    // A write beyond a file size limit (ulimit -f) fails (EFBIG) and is
+    // reported as any output that cannot be written, instead of ending the
+    // process without a word by SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     std::string error;
     try
       {

@@ -104,7 +104,10 @@ namespace estep
         "directory after the first step past every multiple of this much "
         "simulated time (0: not by simulated time). `estep file.prm "
         "--resume` continues from the last checkpoint, bit for bit as if "
-        "the run had not stopped. A checkpoint is also written at the end of "
+        "the run had not stopped (energy stepping, explicit Newmark, energy "
+        "momentum; the SUNDIALS methods restart their solvers at the "
+        "checkpoint's state and continue within their tolerance). A "
+        "checkpoint is also written at the end of "
         "the run and when SIGINT or SIGTERM stops it, whenever either "
         "interval is set.");
       prm.declare_entry(

@@ -12,11 +12,6 @@ namespace estep
   {
     settings.check();
     record_unread_settings(settings.unread_entries);
-    if (system.has_constraints())
-      throw std::invalid_argument(
-        "Time integration/Method: the implicit integrators cannot keep "
-        "bodies apart by impenetrability constraints (Contact/Mode = "
-        "impenetrability); use energy stepping.");
     if (!system.has_hessian())
       throw std::invalid_argument(
         "Time integration/Method: the implicit integrators need the Hessian "

@@ -4,7 +4,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -147,10 +149,20 @@ namespace estep
     header.put(checksum_of(payload.data()));
 
     const std::string temporary = file + ".part";
-    write_durably(temporary, magic + header.data() + payload.data());
-    if (std::rename(temporary.c_str(), file.c_str()) != 0)
-      throw OutputFailed("Renaming <" + temporary + "> to <" + file +
-                         "> failed: " + std::strerror(errno) + ".");
+    try
+      {
+        write_durably(temporary, magic + header.data() + payload.data());
+        if (std::rename(temporary.c_str(), file.c_str()) != 0)
+          throw OutputFailed("Renaming <" + temporary + "> to <" + file +
+                             "> failed: " + std::strerror(errno) + ".");
+      }
+    catch (const OutputFailed &)
+      {
+        // No partial checkpoint stays behind (on a full disk, its space is
+        // what the summary needs); the previous one is untouched.
+        std::remove(temporary.c_str());
+        throw;
+      }
     // The rename itself reaches the disk with its directory.
     const std::string directory =
       std::filesystem::path(file).parent_path().string();
@@ -178,10 +190,15 @@ namespace estep
     const std::string bytes((std::istreambuf_iterator<char>(in)),
                             std::istreambuf_iterator<char>());
     const std::size_t header_size = magic.size() + 2 * sizeof(std::uint64_t);
-    if (bytes.size() < header_size || bytes.compare(0, magic.size(), magic))
+    const std::size_t marked      = std::min(bytes.size(), magic.size());
+    if (bytes.compare(0, marked, magic, 0, marked) != 0)
       throw std::runtime_error("<" + file +
                                "> is not a checkpoint of this version of "
-                               "estep.");
+                               "estep (it does not start with its mark).");
+    if (bytes.size() < header_size)
+      throw std::runtime_error("The checkpoint <" + file +
+                               "> is damaged (cut short: " +
+                               std::to_string(bytes.size()) + " bytes).");
     const std::string header = bytes.substr(magic.size(), header_size);
     StateReader       header_reader(header);
     const auto        size    = header_reader.get<std::uint64_t>();

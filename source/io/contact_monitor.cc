@@ -202,17 +202,24 @@ namespace estep
 
 
 
+  bool
+  ContactMonitor::contact_over() const
+  {
+    // Apart for at least as long as in contact: a penalty contact has step
+    // ends without intersecting faces in its midst.
+    return n_contact_instants > 0 && !in_contact &&
+           integrator.time() - last_contact >= contact_duration();
+  }
+
+
+
   double
   ContactMonitor::collision_restitution(const Vector &q0,
                                         const Vector &v0,
                                         const Vector &q1,
                                         const Vector &v1) const
   {
-    // Over: the bodies have been apart for at least as long as they were in
-    // contact (a penalty contact has step ends without intersecting faces in
-    // its midst).
-    const double apart = integrator.time() - last_contact;
-    if (n_contact_instants == 0 || in_contact || apart < contact_duration())
+    if (!contact_over())
       return std::numeric_limits<double>::quiet_NaN();
     return restitution(q0, v0, q1, v1);
   }
@@ -264,10 +271,7 @@ namespace estep
       out << "contact from t = " << first_contact << " to " << last_contact
           << " (duration " << contact_duration() << ", " << n_contact_instants
           << " step ends in contact"
-          << (std::isfinite(collision_restitution(q0, v0, q1, v1)) ?
-                "" :
-                ", perhaps not over")
-          << ")";
+          << (contact_over() ? "" : ", perhaps not over") << ")";
     const double e = collision_restitution(q0, v0, q1, v1);
     if (std::isfinite(e))
       out << ", coefficient of restitution " << e;

@@ -376,10 +376,12 @@ namespace estep
 
 
   void
-  FieldOutput::finish(const TimeLoopResult &result)
+  FieldOutput::finish(const TimeLoopResult &)
   {
-    if (result.status != RunStatus::failed && implementation->series_pending &&
-        implementation->rank == 0)
+    // Also after a failure: every snapshot the series holds was written
+    // whole (and agreed by every process), and one written since the last
+    // rewrite would be left out of it.
+    if (implementation->series_pending && implementation->rank == 0)
       implementation->write_series();
   }
 

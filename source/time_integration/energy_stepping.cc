@@ -187,8 +187,9 @@ namespace estep
     // The reflection leaves q where it is, so the flight still departs from
     // the level it sat on; if the new velocity carries it back through that
     // level at once (a crossing at s = 0), the jump there is made at this
-    // instant too. The cap only guards against a cycle; an event it leaves
-    // makes a zero-length step.
+    // instant too. Contacts that the cap of reflections leaves still touching
+    // and approaching are beyond reflections one pair at a time (as between
+    // flush faces): the run stalls there, with a message saying so.
     for (unsigned int k = 0;; ++k)
       {
         query.lower_level = level_height(level);
@@ -202,16 +203,26 @@ namespace estep
           {
             std::ostringstream message;
             message << "Energy stepping stalled at t = " << t << " with the "
-                    << "energy step h = " << h << ": " << stalled.what()
-                    << ". The energy step is likely below the round-off of "
-                    << "the potential energy (or V is not finite there); "
-                    << "try a larger Energy step.";
+                    << "energy step h = " << h << ": " << stalled.what() << ".";
             throw StalledRun(message.str());
           }
         s_level = crossing.direction != 0 ? crossing.s : horizon;
         contact = system.first_constraint_event(q, v, s_level);
         if (k == max_simultaneous_events)
-          break;
+          {
+            if (!contact || contact->s > 0.)
+              break;
+            std::ostringstream message;
+            message
+              << "Energy stepping stalled at t = " << t << ": after "
+              << max_simultaneous_events << " reflections at this instant, "
+              << "one contact pair at a time, the impenetrability contacts "
+              << "still hold a pair touching and approaching. Pairwise "
+              << "reflections cannot resolve contacts that hold each other "
+              << "in place, as between flush faces of two bodies (parallel "
+              << "faces whose vertices and edges lie on each other).";
+            throw StalledRun(message.str());
+          }
         if (contact && contact->s == 0.)
           {
             reflect(contact->normal);
@@ -382,6 +393,14 @@ namespace estep
     snapshot.potential_energy          = system.energy(snapshot.q);
     snapshot.terraced_potential_energy = level_height(level_flight);
     return snapshot;
+  }
+
+
+
+  bool
+  EnergyStepping::follows_constraint_events() const
+  {
+    return true;
   }
 
 

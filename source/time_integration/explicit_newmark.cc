@@ -164,12 +164,6 @@ namespace estep
       if (!(dt > 0.))
         throw std::runtime_error(
           "Time integration/Explicit Newmark/Time step: must be positive.");
-      if (system.has_constraints())
-        throw std::runtime_error(
-          "Time integration/Method: explicit newmark cannot keep bodies "
-          "apart by impenetrability constraints (Contact/Mode = "
-          "impenetrability), which it has no events for; use energy "
-          "stepping, or Contact/Mode = penalty.");
       return std::make_unique<ExplicitNewmark>(system, dt);
     }
   } // namespace

@@ -172,10 +172,17 @@ namespace estep
       const double tolerance =
         4. * std::max(flight.value_tolerance(),
                       4. * epsilon * std::max(std::abs(c0), std::abs(c1)));
+      if (!std::isfinite(tolerance))
+        throw SearchStalled(
+          "the round-off of V along the flight has no finite bound: V is "
+          "not smooth enough there for a certified search (as the penalty "
+          "between flush, coplanar faces), whatever the energy step");
       if (!(tolerance < 0.5 * (c1 - c0)))
         throw SearchStalled("the round-off band of V along the flight, " +
                             to_short_string(tolerance) +
-                            ", is not below half the energy step");
+                            ", is not below half the energy step. The energy "
+                            "step is likely below the round-off of the "
+                            "potential energy; try a larger Energy step");
       // f = +infinity where the configuration is inadmissible (beyond the
       // flight's admissible limit); such intervals are never enclosed.
       const auto value_at = [&](const double s) {
@@ -233,7 +240,9 @@ namespace estep
                   " intervals without deciding, the last at flight parameter "
                   "s = " +
                   to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
-                  " wide");
+                  " wide. The energy step is likely below the round-off of "
+                  "the potential energy (or V is not finite there); try a "
+                  "larger Energy step");
               statistics.max_intervals_in_one_search =
                 std::max(statistics.max_intervals_in_one_search, n_examined);
               // The rules for the sitting level apply while f(a) is still

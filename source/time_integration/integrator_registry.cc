@@ -1,6 +1,9 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/systems/mechanical_system.h>
 #include <estep/time_integration/integrator_registry.h>
+
+#include <stdexcept>
 
 namespace estep
 {
@@ -52,8 +55,16 @@ namespace estep
   create_integrator(dealii::ParameterHandler &prm,
                     const MechanicalSystem   &system)
   {
-    return integrator_registry()
-      .get(prm.get("Method"), "Time integration/Method")
-      .create(prm, system);
+    const std::string method     = prm.get("Method");
+    auto              integrator = integrator_registry()
+                        .get(method, "Time integration/Method")
+                        .create(prm, system);
+    if (system.has_constraints() && !integrator->follows_constraint_events())
+      throw std::runtime_error(
+        "Time integration/Method: " + method +
+        " cannot keep bodies apart by impenetrability constraints "
+        "(Contact/Mode = impenetrability), whose events it does not "
+        "follow; use energy stepping, or Contact/Mode = penalty.");
+    return integrator;
   }
 } // namespace estep

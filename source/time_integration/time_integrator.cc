@@ -124,6 +124,14 @@ namespace estep
 
 
 
+  bool
+  TimeIntegrator::follows_constraint_events() const
+  {
+    return false;
+  }
+
+
+
   std::string
   TimeIntegrator::conserved_energy() const
   {

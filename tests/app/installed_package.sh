@@ -2,7 +2,8 @@
 # Install estep into a temporary prefix, build the user plugins of doc/example_project against the
 # installed package (find_package(estep), estep::estep), and run them through the installed estep
 # command: the spring problem by energy-stepping (completed, the terraced energy and the orbit's
-# radius kept), then by the plugin integrator with the plugin postprocessor.
+# radius kept), then by the plugin integrator with the plugin postprocessor; the plugin integrator
+# is refused for impenetrable contact.
 set -eu
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -20,6 +21,17 @@ cd "$work/build"
   -s "Postprocessors/List=history, max speed" -s "Output directory=euler_output" \
   -s "Time integration/Method=symplectic euler" \
   -s "Time integration/Symplectic Euler/Time step=1e-3"
+# A plugin integrator that does not follow constraint events is refused for impenetrable contact,
+# through which it would step, before any output.
+if "$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_impenetrable.prm" \
+  -s "Additional shared libraries=./libexample_plugins.so" \
+  -s "Time integration/Method=symplectic euler" -s "Output directory=euler_impenetrable" \
+  2> refusal.txt; then
+  echo "symplectic euler ran with impenetrable contact"; exit 1
+fi
+grep -q "^estep: error: Time integration/Method: symplectic euler cannot keep bodies apart by impenetrability constraints" refusal.txt ||
+  { cat refusal.txt; exit 1; }
+test ! -e euler_impenetrable
 python3 - <<'PY'
 import csv, json
 s = json.load(open("spring_output/summary.json"))

@@ -11,11 +11,13 @@
 #   impact speed (energy-stepping's time lags the parabola's at first order in h), the impact
 #   speed is the free fall's (1 %), no vertex is ever behind the floor, the contact lasts
 #   0.005 to 0.03 and the rebound keeps 70 to 100 % of the speed; the terraced energy is
-#   conserved to 1e-12 relative;
+#   conserved to 1e-12 relative; the contact line says the bounce is over;
 # - the same drop onto a surface obstacle instead of the half-space (floor.stl, a square
 #   z = 0 of two triangles written here; to t = 0.4): no intersecting face pair at any step
 #   end, the terraced energy conserved to 1e-12 relative, the impact speed as with the
 #   half-space (1 %) and a rebound of 70 to 100 % of it;
+# - two cubes meeting with flush faces, by impenetrability and by penalty: stalled at once, with
+#   the cause named;
 # - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
 #   on the same mesh (and the clamped vertices never move: the supports remove them);
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
@@ -44,6 +46,10 @@ files="$ESTEP_SOURCE_DIR/parameter_files"
   fail "scene_newtons_cradle: $(tail -3 cradle.log)"
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=drop" -s "Time integration/End time=0.4" \
   > drop.log 2>&1 || fail "scene_ball_drop: $(tail -3 drop.log)"
+# The bounce ended long before t = 0.4 (apart for longer than it lasted): the contact line says
+# it is over, though a single body has no restitution.
+grep -q "^estep: contact from t = 0\.3[0-9]* to 0\.3[0-9]* (duration [0-9.e-]*, [0-9]* step ends in contact)" drop.log ||
+  fail "scene_ball_drop: the contact line does not say the bounce is over: $(grep contact drop.log)"
 cat > floor.stl <<'STL'
 solid floor
   facet normal 0 0 1
@@ -262,6 +268,57 @@ expect_error "Scene/Body 1/Placement: the placed mesh: The mesh has a degenerate
 printf 'set Output directory = bad\nsubsection Problem\n  set System = scene\nend\nsubsection Scene\n  subsection Body 1\n    subsection Mesh\n      set Subdivisions = 2\n    end\n  end\nend\nsubsection Contact\n  set Mode = penalty\nend\n' > one_body.prm
 expect_error "Contact/Mode: a scene of one body without obstacles has nothing to contact" one_body.prm
 [[ ! -e bad ]] || fail "a scene that failed at set-up wrote output"
+
+# Two cubes meeting face to face, their faces flush (vertices and edges on each other): the
+# pairwise reflections of impenetrability cannot part them, and the run ends as stalled at once
+# (exit code 3) instead of reflecting without end at the same instant.
+cat > flush.prm <<'PRM'
+set Output directory = flush
+subsection Problem
+  set System = scene
+end
+subsection Scene
+  set Number of bodies = 2
+  subsection Body 1
+    subsection Mesh
+      set Subdivisions = 1
+    end
+    subsection Initial velocity
+      set Translational velocity = 1, 0, 0
+    end
+  end
+  subsection Body 2
+    subsection Mesh
+      set Subdivisions = 1
+    end
+    subsection Placement
+      set Shift = 1.1, 0, 0
+    end
+  end
+end
+subsection Contact
+  set Mode = impenetrability
+end
+subsection Time integration
+  set End time = 0.5
+  subsection Energy stepping
+    set Energy step = 1e-3
+  end
+end
+PRM
+timeout 300 "$ESTEP" flush.prm > flush.log 2>&1
+rc=$?
+[[ $rc == 3 ]] || fail "flush faces: exit code $rc, expected 3 (stalled): $(tail -3 flush.log)"
+grep -q "stalled at t = 0.09999.*flush faces of two bodies" flush.log || fail "flush faces: $(tail -2 flush.log)"
+grep -q '"status": "stalled"' flush/summary.json || fail "flush faces: the summary does not say stalled"
+# The penalty between the flush faces has no round-off bound: stalled with the cause, not with
+# the advice of a larger energy step, which would not help.
+timeout 300 "$ESTEP" flush.prm -s "Contact/Mode=penalty" -s "Contact/Penalty parameter=1e-3" \
+  -s "Output directory=flush_penalty" > flush_penalty.log 2>&1
+rc=$?
+[[ $rc == 3 ]] || fail "flush faces by penalty: exit code $rc, expected 3 (stalled): $(tail -2 flush_penalty.log)"
+grep -q "the round-off of V along the flight has no finite bound" flush_penalty.log || fail "flush faces by penalty: $(tail -1 flush_penalty.log)"
+! grep -q "try a larger Energy step" flush_penalty.log || fail "flush faces by penalty: advises a larger energy step"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
 [[ $failures == 0 ]]

@@ -84,10 +84,15 @@ namespace estep
                 const Vector &q1,
                 const Vector &v1) const;
 
-    /** restitution() once a collision is over: the bodies have been in
-     * contact, and apart since for at least as long as the contact lasted.
-     * NaN otherwise: before a first contact, or while one may still go on,
-     * there is no collision to measure. */
+    /** Whether a collision is over: the bodies have been in contact, and
+     * apart since for at least as long as the contact lasted. */
+    bool
+    contact_over() const;
+
+    /** restitution() once a collision is over (contact_over()). NaN
+     * otherwise: before a first contact, or while one may still go on, there
+     * is no collision to measure; and for a single body, whose contacts are
+     * with obstacles. */
     double
     collision_restitution(const Vector &q0,
                           const Vector &v0,

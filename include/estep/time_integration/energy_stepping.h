@@ -80,6 +80,10 @@ namespace estep
     Snapshot
     dense_state(const double t) const override;
 
+    /** True: a step ends at the first constraint event and reflects. */
+    bool
+    follows_constraint_events() const override;
+
     std::vector<Counter>
     counters() const override;
 
@@ -155,7 +159,8 @@ namespace estep
     jump_at_level(const int direction);
 
     /** The most events (constraint reflections and the level jumps they
-     * cause) resolved at one instant before a step. */
+     * cause) resolved at one instant before a step; a contact still touching
+     * and approaching after them stalls the run (StalledRun). */
     static constexpr unsigned int max_simultaneous_events = 1000;
 
     /** Reflect the velocity on a constraint @p normal. */

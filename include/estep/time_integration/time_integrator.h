@@ -120,6 +120,16 @@ namespace estep
     load_state(StateReader &in);
     /** @} */
 
+    /**
+     * Whether step() stops at the system's constraint events
+     * (MechanicalSystem::first_constraint_event(), impenetrable contact) and
+     * reflects there. An integrator that does not (the default) is refused
+     * for a system with constraints by create_integrator(), since it would
+     * step through them.
+     */
+    virtual bool
+    follows_constraint_events() const;
+
     /** The energy the integrator conserves, as a formula for messages: "T +
      * V" by default, the time loop checks its drift. */
     virtual std::string
