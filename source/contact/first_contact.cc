@@ -264,8 +264,10 @@ namespace estep
                     queries.end());
 
       const double touching = 2. * std::sqrt(3.) * settings.tolerance;
-      double       best     = s_max;
-      const Query *found    = nullptr;
+      // A distance below this may have the wrong sign by round-off.
+      const double distance_roundoff = 64. * unit * max_q;
+      double       best              = s_max;
+      const Query *found             = nullptr;
       for (const Query &query : queries)
         {
           const FirstContact start =
@@ -275,16 +277,23 @@ namespace estep
           if (std::abs(distance) <= touching &&
               closest_points_on_primitives(start, q, touching))
             {
-              if (rate < 0.)
+              // The rate at which the pair parts. The side of the pair is the
+              // sign of its distance: the orientation only guesses it (the
+              // outward normals of one face pair, which at an edge of two
+              // faces can point the wrong way), and decides only a distance
+              // within round-off.
+              const double parting =
+                distance < -distance_roundoff ? -rate : rate;
+              if (parting < 0.)
                 {
                   // Touching and approaching: a contact now.
                   best  = 0.;
                   found = &query;
                   break;
                 }
-              if (rate == 0.)
+              if (parting == 0.)
                 continue;
-              s0 = 8. * settings.tolerance / rate;
+              s0 = 8. * settings.tolerance / parting;
             }
           if (s0 >= best)
             continue;

@@ -188,8 +188,8 @@ namespace estep
     // the level it sat on; if the new velocity carries it back through that
     // level at once (a crossing at s = 0), the jump there is made at this
     // instant too. Contacts that the cap of reflections leaves still touching
-    // and approaching are beyond reflections one pair at a time (as between
-    // flush faces): the run stalls there, with a message saying so.
+    // and approaching are beyond reflections one pair at a time: the run
+    // stalls there, with a message saying so.
     for (unsigned int k = 0;; ++k)
       {
         query.lower_level = level_height(level);
@@ -213,14 +213,11 @@ namespace estep
             if (!contact || contact->s > 0.)
               break;
             std::ostringstream message;
-            message
-              << "Energy stepping stalled at t = " << t << ": after "
-              << max_simultaneous_events << " reflections at this instant, "
-              << "one contact pair at a time, the impenetrability contacts "
-              << "still hold a pair touching and approaching. Pairwise "
-              << "reflections cannot resolve contacts that hold each other "
-              << "in place, as between flush faces of two bodies (parallel "
-              << "faces whose vertices and edges lie on each other).";
+            message << "Energy stepping stalled at t = " << t << ": after "
+                    << max_simultaneous_events << " reflections at this "
+                    << "instant, one contact pair at a time, a pair still "
+                    << "touches and approaches: contacts that hold each other, "
+                    << "which reflections one pair at a time cannot part.";
             throw StalledRun(message.str());
           }
         if (contact && contact->s == 0.)

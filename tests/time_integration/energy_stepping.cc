@@ -11,6 +11,8 @@
 #include "test_flights.h"
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 namespace
 {
@@ -185,6 +187,47 @@ namespace
   private:
     Vector inverse_masses;
   };
+
+  /** The oscillator under a constraint that is touched and approached at
+   * every instant, whatever the reflections: contacts that hold each other. */
+  class HeldOscillator : public Oscillator
+  {
+  public:
+    std::optional<ConstraintEvent>
+    first_constraint_event(const Vector &,
+                           const Vector &v,
+                           const double) const override
+    {
+      return ConstraintEvent{0., v};
+    }
+    bool
+    has_constraints() const override
+    {
+      return true;
+    }
+  };
+
+  TEST(EnergyStepping, StallsOnContactsThatReflectionsCannotPart)
+  {
+    const HeldOscillator held;
+    Vector               q0(2), v0(2);
+    q0[0] = 1.;
+    v0[1] = 1.;
+    EnergyStepping stepping(held, 1e-3);
+    stepping.initialize(0., q0, v0);
+    try
+      {
+        stepping.step(1.);
+        FAIL() << "a step through contacts that hold each other";
+      }
+    catch (const StalledRun &stalled)
+      {
+        EXPECT_NE(std::string(stalled.what()).find("after 1000 reflections"),
+                  std::string::npos)
+          << stalled.what();
+      }
+    EXPECT_EQ(stepping.n_steps(), 0u);
+  }
 
   TEST(EnergyStepping, ConvergesToTheExactMotionOfAHarmonicOscillator)
   {

@@ -57,11 +57,15 @@ namespace estep
      * steps right after a reflection): a primitive pair whose distance at s =
      * 0 is at most 2 sqrt(3) tolerance (along the normal, with the closest
      * points on the primitives themselves, not beyond an edge's end or a
-     * face's boundary) and whose distance rate (gradient . v) is >= 0 is
-     * separating; it is ignored on [0, s1] with s1 = 8
-     * tolerance / rate and examined by the CCD on [s1, s_max]. A pair that
-     * touches at s = 0 and approaches (rate < 0) is reported at s = 0 (several
-     * simultaneous contacts are then resolved one by one).
+     * face's boundary) and whose parting rate is >= 0 is separating; it is
+     * ignored on [0, s1] with s1 = 8 tolerance / rate and examined by the CCD
+     * on [s1, s_max]. The parting rate is the distance rate (gradient . v)
+     * with the sign of the pair's side, the sign of its distance: the
+     * orientation of the normal, taken from one pair of faces, can be wrong
+     * at an edge of two faces, and decides only a distance within round-off.
+     * A pair that touches at s = 0 and approaches (parting rate < 0) is
+     * reported at s = 0 (several simultaneous contacts are then resolved one
+     * by one).
      *
      * Returns nothing if no contact occurs on [0, s_max].
      */
