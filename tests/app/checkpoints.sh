@@ -209,6 +209,17 @@ printf 'x' | dd of=run/checkpoint.bin bs=1 seek=200 conv=notrunc 2> /dev/null
 rc=$?
 [[ $rc == 1 ]] || fail "damaged checkpoint: exit code $rc"
 grep -q "damaged" err.txt || fail "damaged checkpoint: $(cat err.txt)"
+# A checkpoint cut short, even to nothing, is damaged (not "of another version").
+for size in 0 10; do
+  head -c $size run/checkpoint.bin > short.bin
+  cp run/checkpoint.bin whole.bin && mv short.bin run/checkpoint.bin
+  "$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
+  rc=$?
+  [[ $rc == 1 ]] || fail "a checkpoint of $size bytes: exit code $rc"
+  grep -qx "estep: error: The checkpoint <run/checkpoint.bin> is damaged (cut short: $size bytes)." err.txt ||
+    fail "a checkpoint of $size bytes: $(cat err.txt)"
+  mv whole.bin run/checkpoint.bin
+done
 mv run/checkpoint.bin damaged.bin && mkdir run/checkpoint.bin
 "$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
 rc=$?
