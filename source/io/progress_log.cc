@@ -2,6 +2,7 @@
 
 #include <estep/io/progress_log.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -91,20 +92,21 @@ namespace estep
                           wall * (end_time - integrator.time()) /
                             (integrator.time() - first_time) :
                           0.;
-    char         line[256];
-    // Whole seconds, or three digits of a time too long to wait for.
+    // Whole seconds (at most 9 digits), or three digits of a time too long
+    // to wait for.
+    const bool waitable = left < 1e9;
+    char       line[256];
     std::snprintf(line,
                   sizeof(line),
-                  left < 1e9 ? "estep: t = %.6g (%.1f%%), %llu steps, %.0f "
-                               "steps/s, %.1f s elapsed, %.0f s left" :
-                               "estep: t = %.6g (%.1f%%), %llu steps, %.0f "
-                               "steps/s, %.1f s elapsed, %.3g s left",
+                  "estep: t = %.6g (%.1f%%), %llu steps, %.0f steps/s, %.1f s "
+                  "elapsed, %.*g s left",
                   integrator.time(),
                   100. * done,
                   static_cast<unsigned long long>(integrator.n_steps()),
                   (integrator.n_steps() - first_step) / (wall > 0. ? wall : 1.),
                   wall,
-                  left);
+                  waitable ? 9 : 3,
+                  waitable ? std::round(left) : left);
     if (to_standard_output)
       std::cout << line << suffix << std::endl;
     out << line << suffix << std::endl;

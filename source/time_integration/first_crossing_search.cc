@@ -151,6 +151,11 @@ namespace estep
 
   namespace
   {
+    /** The end of a stall's reason where a larger energy step may help. */
+    const std::string step_below_round_off =
+      ". The energy step is likely below the round-off of the potential "
+      "energy (or V is not finite there); try a larger Energy step";
+
     /** find_first_crossing() in windows that double from the first one on,
      * the last reaching past the horizon (so that no window depends on the
      * horizon): a crossing it returns may lie beyond it. */
@@ -180,9 +185,8 @@ namespace estep
       if (!(tolerance < 0.5 * (c1 - c0)))
         throw SearchStalled("the round-off band of V along the flight, " +
                             to_short_string(tolerance) +
-                            ", is not below half the energy step. The energy "
-                            "step is likely below the round-off of the "
-                            "potential energy; try a larger Energy step");
+                            ", is not below half the energy step" +
+                            step_below_round_off);
       // f = +infinity where the configuration is inadmissible (beyond the
       // flight's admissible limit); such intervals are never enclosed.
       const auto value_at = [&](const double s) {
@@ -240,9 +244,7 @@ namespace estep
                   " intervals without deciding, the last at flight parameter "
                   "s = " +
                   to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
-                  " wide. The energy step is likely below the round-off of "
-                  "the potential energy (or V is not finite there); try a "
-                  "larger Energy step");
+                  " wide" + step_below_round_off);
               statistics.max_intervals_in_one_search =
                 std::max(statistics.max_intervals_in_one_search, n_examined);
               // The rules for the sitting level apply while f(a) is still
