@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,6 +36,50 @@ namespace estep
         return text;
       return trimmed(text.substr(0, equals)) + " = " +
              trimmed(text.substr(equals + 1));
+    }
+
+    /**
+     * Whether an entry of the subsection @p section of the current
+     * subsection of @p prm has another value than in @p lines, the printed
+     * lines of that subsection in a handler of the same declarations (see
+     * printed_subsections()). Reads only that subsection's entries.
+     */
+    bool
+    differs_from(dealii::ParameterHandler       &prm,
+                 const std::string              &section,
+                 const std::vector<std::string> &lines)
+    {
+      prm.enter_subsection(section);
+      unsigned int depth   = 1;
+      bool         differs = false;
+      try
+        {
+          for (const std::string &line : lines)
+            if (line.rfind("subsection ", 0) == 0)
+              {
+                prm.enter_subsection(trimmed(line.substr(11)));
+                ++depth;
+              }
+            else if (line == "end")
+              {
+                prm.leave_subsection();
+                --depth;
+              }
+            else if (const std::size_t equals = line.find(" = ");
+                     line.rfind("set ", 0) == 0 && equals != std::string::npos)
+              differs =
+                differs || trimmed(prm.get(line.substr(4, equals - 4))) !=
+                             line.substr(equals + 3);
+        }
+      catch (...)
+        {
+          for (; depth > 0; --depth)
+            prm.leave_subsection();
+          throw;
+        }
+      for (; depth > 0; --depth)
+        prm.leave_subsection();
+      return differs;
     }
 
     /** "a does", "a and b do", "a, b and c do". */
@@ -95,14 +140,13 @@ namespace estep
 
 
   std::vector<UnreadSubsection>
-  changed_unread_subsections(const dealii::ParameterHandler       &prm,
-                             const std::string                    &path,
+  changed_unread_subsections(dealii::ParameterHandler             &prm,
                              const std::vector<PluginDeclaration> &plugins,
                              const std::vector<std::string>       &chosen)
   {
     // Each plugin's subsections with their defaults.
     std::vector<std::map<std::string, std::vector<std::string>>> declared;
-    std::map<std::string, std::vector<std::string>>              read;
+    std::set<std::string>                                        read;
     for (const PluginDeclaration &plugin : plugins)
       {
         dealii::ParameterHandler own;
@@ -111,19 +155,19 @@ namespace estep
         declared.push_back(printed_subsections(own));
         if (std::find(chosen.begin(), chosen.end(), plugin.name) !=
             chosen.end())
-          read.insert(declared.back().begin(), declared.back().end());
+          for (const auto &section : declared.back())
+            read.insert(section.first);
       }
-    const auto given = printed_subsections(prm, path);
     // Per subsection no chosen plugin reads: the plugins that do, and
     // whether it differs from the defaults of one of them.
     std::map<std::string, std::pair<std::vector<std::string>, bool>> others;
     for (std::size_t p = 0; p < plugins.size(); ++p)
       for (const auto &[section, defaults] : declared[p])
-        if (read.count(section) == 0 && given.count(section) > 0)
+        if (read.count(section) == 0 && prm.subsection_path_exists({section}))
           {
             auto &[readers, changed] = others[section];
             readers.push_back(plugins[p].name);
-            changed = changed || given.at(section) != defaults;
+            changed = changed || differs_from(prm, section, defaults);
           }
     std::vector<UnreadSubsection> unread;
     for (const auto &[section, readers_and_changed] : others)

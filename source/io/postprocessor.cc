@@ -101,7 +101,6 @@ namespace estep
     std::vector<std::string> warnings;
     for (const UnreadSubsection &unread :
          changed_unread_subsections(prm,
-                                    "Postprocessors",
                                     postprocessor_registry().declarations(),
                                     dealii::Utilities::split_string_list(list,
                                                                          ',')))

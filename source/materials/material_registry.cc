@@ -46,7 +46,7 @@ namespace estep
     const std::string model = prm.get("Model");
     const auto &plugin = material_registry().get(model, section + "/Model");
     for (const UnreadSubsection &unread : changed_unread_subsections(
-           prm, section, material_registry().declarations(), {model}))
+           prm, material_registry().declarations(), {model}))
       throw std::runtime_error(
         unread_subsection_text(section, unread, section + "/Model = " + model) +
         "; a setting there would be ignored.");

@@ -100,7 +100,7 @@ namespace estep
     // The subsections that only the other problems declare keep their
     // defaults: a setting there would be ignored.
     for (const UnreadSubsection &unread : changed_unread_subsections(
-           prm, "", problem_registry().declarations(), {name}))
+           prm, problem_registry().declarations(), {name}))
       throw std::runtime_error(
         unread_subsection_text("", unread, "Problem/System = " + name) +
         "; a setting there would be ignored.");

@@ -36,11 +36,8 @@ namespace estep
   {
     const std::string        method = prm.get("Method");
     std::vector<std::string> warnings;
-    for (const UnreadSubsection &unread :
-         changed_unread_subsections(prm,
-                                    "Time integration",
-                                    integrator_registry().declarations(),
-                                    {method}))
+    for (const UnreadSubsection &unread : changed_unread_subsections(
+           prm, integrator_registry().declarations(), {method}))
       warnings.push_back(
         unread_subsection_text("Time integration",
                                unread,

@@ -42,14 +42,16 @@ namespace estep
   };
 
   /**
-   * The subsections inside @p path of @p prm that none of the plugins named
-   * in @p chosen declares, that another of @p plugins declares, and whose
-   * values differ from that plugin's defaults: settings that the run
-   * ignores. (An entry set to its default value cannot be told apart.)
+   * The subsections of the current subsection of @p prm that none of the
+   * plugins named in @p chosen declares, that another of @p plugins declares,
+   * and whose values differ from that plugin's defaults: settings that the
+   * run ignores. (An entry set to its default value cannot be told apart.)
+   * Reads only the entries of those subsections (and leaves @p prm where it
+   * was), so that a scene can ask once per body at a cost that does not grow
+   * with the number of bodies.
    */
   std::vector<UnreadSubsection>
-  changed_unread_subsections(const dealii::ParameterHandler       &prm,
-                             const std::string                    &path,
+  changed_unread_subsections(dealii::ParameterHandler             &prm,
                              const std::vector<PluginDeclaration> &plugins,
                              const std::vector<std::string>       &chosen);
 
