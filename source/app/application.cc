@@ -75,11 +75,11 @@ namespace estep
       "A run writes the parameters used (parameters.prm), history.csv and summary.json to\n"
       "the directory named by 'set Output directory'.\n"
       "Exit codes: 0 completed, 1 bad input, 2 the run became unstable, 3 the run\n"
-      "stalled (its event search could not advance at round-off), 4 an output could\n"
-      "not be written (e.g. a full disk), 5 a body passed into another or into an\n"
-      "obstacle (e.g. a penalty too soft to keep them apart), 128 + the signal's\n"
-      "number when SIGINT or SIGTERM ended the run (130, 143; summary.json says\n"
-      "interrupted).\n";
+      "stalled (its event search could not advance at round-off), 4 the run failed\n"
+      "(an output could not be written, e.g. a full disk; or a plugin threw), 5 a\n"
+      "body passed into another or into an obstacle (e.g. a penalty too soft to\n"
+      "keep them apart), 128 + the signal's number when SIGINT or SIGTERM ended\n"
+      "the run (130, 143; summary.json says interrupted).\n";
 
     /** The usage and the registered plugins, by extension point. */
     void

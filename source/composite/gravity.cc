@@ -198,7 +198,8 @@ namespace estep
 
 
   Gravity::Gravity(std::shared_ptr<const MechanicalSystem> base,
-                   const std::array<double, 3>            &acceleration)
+                   const std::array<double, 3>            &acceleration,
+                   const std::vector<unsigned int>        &weightless_points)
     : SystemDecorator(std::move(base))
     , g(acceleration)
   {
@@ -222,11 +223,20 @@ namespace estep
       throw std::invalid_argument(
         "Gravity: the coordinates of <" + base_system->name() +
         "> are not point positions of its spatial dimension.");
+    std::vector<bool> weightless(inverse_mass.size() / dim, false);
+    for (const unsigned int p : weightless_points)
+      {
+        if (p >= weightless.size())
+          throw std::invalid_argument(
+            "Gravity: weightless point " + std::to_string(p) + " of <" +
+            base_system->name() + "> does not exist.");
+        weightless[p] = true;
+      }
     w.reinit(inverse_mass.size());
     for (unsigned int i = 0; i < w.size(); ++i)
       {
         const double gc = g[i % dim];
-        if (gc == 0.)
+        if (gc == 0. || weightless[i / dim])
           continue;
         if (!(inverse_mass[i] > 0.) || !std::isfinite(inverse_mass[i]))
           throw std::invalid_argument(

@@ -636,8 +636,13 @@ namespace estep
               "= 0; move the bodies or the obstacles.");
           system = obstacles;
         }
+      // The surfaces' points carry no weight: their mass is a placeholder.
       if (gravity[0] != 0. || gravity[1] != 0. || gravity[2] != 0.)
-        system = std::make_shared<Gravity>(system, gravity);
+        system = std::make_shared<Gravity>(system,
+                                           gravity,
+                                           contact_system ?
+                                             contact_system->surface_points() :
+                                             std::vector<unsigned int>());
       std::vector<unsigned int> fixed;
       for (unsigned int b = 0; b < n_bodies; ++b)
         for (const unsigned int i : bodies[b].fixed_points)

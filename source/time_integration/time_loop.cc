@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <sstream>
+#include <string>
 
 namespace estep
 {
@@ -56,6 +57,15 @@ namespace estep
     public:
       using std::runtime_error::runtime_error;
     };
+
+    /** The message of a run that an unexpected exception ended at @p t. */
+    std::string
+    failure_message(const double t, const std::string &what)
+    {
+      std::ostringstream message;
+      message << "The run failed at t = " << t << ": " << what;
+      return message.str();
+    }
   } // namespace
 
 
@@ -338,6 +348,19 @@ namespace estep
         {
           result.status  = RunStatus::failed;
           result.message = failure.what();
+        }
+      // Anything else, e.g. a plugin's integrator or postprocessor that
+      // throws: the run failed, and its summary says so.
+      catch (const std::exception &error)
+        {
+          result.status  = RunStatus::failed;
+          result.message = failure_message(integrator.time(), error.what());
+        }
+      catch (...)
+        {
+          result.status  = RunStatus::failed;
+          result.message = failure_message(integrator.time(),
+                                           "an exception of an unknown type");
         }
       result.largest_energy_drift      = state.largest_energy_drift;
       result.largest_energy_drift_time = state.largest_energy_drift_time;

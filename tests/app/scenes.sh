@@ -15,7 +15,9 @@
 # - the same drop onto a surface obstacle instead of the half-space (floor.stl, a square
 #   z = 0 of two triangles written here; to t = 0.4): no intersecting face pair at any step
 #   end, the terraced energy conserved to 1e-12 relative, the impact speed as with the
-#   half-space (1 %) and a rebound of 70 to 100 % of it;
+#   half-space (1 %) and a rebound of 70 to 100 % of it; a second surface far away leaves the
+#   gravitational potential at t = 0 that of the ball over the half-space (its points have no
+#   weight);
 # - two cubes meeting with flush faces, aligned and overlapping in part: kept apart by
 #   impenetrability; by penalty, stalled at once with the cause named;
 # - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
@@ -68,8 +70,10 @@ solid floor
   endfacet
 endsolid floor
 STL
+# A second surface, high above and far to the side, never touched: its points have no weight.
+printf 'solid far\n facet normal 0 0 1\n  outer loop\n   vertex 5 5 5\n   vertex 5.01 5 5\n   vertex 5 5.01 5\n  endloop\n endfacet\nendsolid far\n' > far.stl
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=surface" -s "Time integration/End time=0.4" \
-  -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" > surface.log 2>&1 ||
+  -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl, far.stl" > surface.log 2>&1 ||
   fail "scene_ball_drop on a surface: $(tail -3 surface.log)"
 "$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever" > cantilever.log 2>&1 ||
   fail "scene_cantilever: $(tail -3 cantilever.log)"
@@ -169,8 +173,12 @@ s = json.load(open("surface/summary.json"))
 rows = history("surface")
 c = s["contact"]
 expect(s["status"] == "completed", f"surface: status {s['status']}")
-expect(s["problem"]["surface obstacles"] == 1 and s["problem"]["fixed vertices"] == 0,
+expect(s["problem"]["surface obstacles"] == 2 and s["problem"]["fixed vertices"] == 0,
        f"surface: {s['problem']}")
+# The surfaces' points have no weight: the ball's own potential, as over the half-space.
+expect(rows[0]["gravitational_potential"] == history("drop")[0]["gravitational_potential"],
+       f"surface: gravitational potential {rows[0]['gravitational_potential']} at t = 0, "
+       f"{history('drop')[0]['gravitational_potential']} over the half-space")
 expect(s["energies"]["terraced energy drift"] < 1e-12, f"surface: drift {s['energies']['terraced energy drift']}")
 expect(c["largest number of intersecting face pairs"] == 0,
        f"surface: {c['largest number of intersecting face pairs']} intersecting face pairs")

@@ -242,6 +242,28 @@ TEST(Gravity, WeightsAndRejectedArguments)
   EXPECT_THROW(Gravity(nullptr, {{0., 0., -1.}}), std::invalid_argument);
   EXPECT_THROW(Gravity(cube, {{0., std::nan(""), -1.}}), std::invalid_argument);
   EXPECT_NO_THROW(Gravity(cube, {{0., 0., 0.}}));
+  EXPECT_THROW(Gravity(cube, {{0., 0., -1.}}, {cube->n_vertices()}),
+               std::invalid_argument);
+}
+
+TEST(Gravity, WeightlessPointsHaveNoWeight)
+{
+  // The points of a rigid obstacle surface have a placeholder mass and must
+  // add nothing to the potential, wherever the surface lies.
+  const auto    cube = cube_body(1);
+  const Gravity all(cube, {{0., 0., -9.81}});
+  const Gravity without(cube, {{0., 0., -9.81}}, {0, 3});
+  const Vector  q = cube->reference_configuration();
+  for (unsigned int i = 0; i < q.size(); ++i)
+    EXPECT_EQ(without.weights()[i],
+              i / 3 == 0 || i / 3 == 3 ? 0. : all.weights()[i]);
+  Vector raised = q;
+  raised[2] += 10.;
+  raised[3 * 3 + 2] += 10.;
+  EXPECT_EQ(without.gravitational_potential(raised),
+            without.gravitational_potential(q));
+  EXPECT_GT(all.gravitational_potential(raised),
+            all.gravitational_potential(q));
 }
 
 TEST(Gravity, GradientMatchesCentralDifferences)

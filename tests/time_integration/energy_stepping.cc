@@ -355,4 +355,46 @@ namespace
     EXPECT_NEAR(recorder.times[3], 0.9, 1e-15);
     EXPECT_EQ(recorder.times[4], 1.);
   }
+
+  TEST(TimeLoop, AnObserverThatThrowsFailsTheRun)
+  {
+    // A plugin's observer (or integrator) that throws ends the run with
+    // status failed and a message with the time, whatever it throws.
+    const Problem argon = estep::testing::argon_cluster();
+    struct Thrower : RunObserver
+    {
+      explicit Thrower(const bool standard)
+        : standard(standard)
+      {}
+      void
+      observe(const Snapshot &s) override
+      {
+        if (s.t < 0.5)
+          return;
+        if (standard)
+          throw std::logic_error("deliberate");
+        throw 42;
+      }
+      bool standard;
+    };
+    for (const bool standard : {true, false})
+      {
+        EnergyStepping stepping(*argon.system, 1e-2);
+        stepping.initialize(0., argon.q0, argon.v0);
+        Thrower          thrower(standard);
+        TimeLoopSettings settings;
+        settings.end_time        = 1.;
+        settings.output_interval = 0.3;
+        const TimeLoopResult result =
+          run_time_loop(stepping, settings, {&thrower});
+        EXPECT_EQ(result.status, RunStatus::failed);
+        const std::string what =
+          standard ? ": deliberate" : ": an exception of an unknown type";
+        EXPECT_EQ(result.message.rfind("The run failed at t = 0.6", 0), 0u)
+          << result.message;
+        EXPECT_EQ(result.message.substr(result.message.size() - what.size()),
+                  what);
+        EXPECT_GE(result.final_time, 0.6);
+      }
+  }
 } // namespace

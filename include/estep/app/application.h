@@ -23,8 +23,9 @@ namespace estep
     exit_unstable = 2,
     /** The run stalled (could not advance in time); summary.json says so. */
     exit_stalled = 3,
-    /** An output could not be written (e.g. a full disk); summary.json says
-     * so where it still can be written. */
+    /** An output could not be written (e.g. a full disk), or the run failed
+     * otherwise once started (e.g. a plugin threw); summary.json says so
+     * where it still can be written. */
     exit_failed = 4,
     /** Bodies passed into each other (e.g. through a penalty too soft to
      * keep them apart); summary.json says so. */

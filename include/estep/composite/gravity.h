@@ -31,7 +31,9 @@ namespace estep
    *   term alone, gravitational_potential()).
    *
    * A point of infinite mass (inverse mass 0) has no weight in a component
-   * where g is zero; elsewhere the constructor refuses it.
+   * where g is zero; elsewhere the constructor refuses it. Points named
+   * weightless have no weight at all, whatever their mass (the points of a
+   * rigid obstacle surface, whose mass is a placeholder).
    *
    * As thread-safe as the base (the decorator itself keeps no scratch).
    */
@@ -43,10 +45,13 @@ namespace estep
      * spatial_dimension() components; in 2D the third must be zero). Throws
      * std::invalid_argument for a non-finite acceleration, a 2D system with
      * a third component, or a point with a non-positive or non-finite inverse
-     * mass in a component where g is not zero.
+     * mass in a component where g is not zero. The points
+     * @p weightless_points (indices of points, not of coordinates) have no
+     * weight.
      */
     Gravity(std::shared_ptr<const MechanicalSystem> base,
-            const std::array<double, 3>            &acceleration);
+            const std::array<double, 3>            &acceleration,
+            const std::vector<unsigned int>        &weightless_points = {});
 
     /** The gravitational acceleration g (zero third component in 2D). */
     const std::array<double, 3> &
