@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install estep into a temporary prefix, build the user plugins of doc/example_project against the
-# installed package (find_package(estep), estep::estep), and run them through the installed estep
-# command: the spring problem by energy-stepping (completed, the terraced energy and the orbit's
+# installed package (find_package(estep), estep_setup_plugin()), check that a Debug build of them
+# would link estep's deal.II, and run them through the installed estep command: the spring problem by energy-stepping (completed, the terraced energy and the orbit's
 # radius kept), then by the plugin integrator with the plugin postprocessor; the plugin integrator
 # is refused for impenetrable contact.
 set -eu
@@ -14,6 +14,17 @@ cmake -S "$ESTEP_SOURCE_DIR/doc/example_project" -B "$work/build" \
   -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }
 cmake --build "$work/build" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+# A Debug build of the plugins links the deal.II that estep links (the release library), not
+# deal.II's debug library beside it: configured only, its link line is read.
+cmake -S "$ESTEP_SOURCE_DIR/doc/example_project" -B "$work/debug" -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure_debug.log" ||
+  { cat "$work/configure_debug.log"; exit 1; }
+link_line=$(cat "$work/debug/CMakeFiles/example_plugins.dir/link.txt")
+case $link_line in
+  *libdeal.ii.g.so*) echo "a Debug build of the plugins links deal.II's debug library: $link_line"; exit 1 ;;
+  *libdeal.ii.so*) ;;
+  *) echo "the plugins link no deal.II: $link_line"; exit 1 ;;
+esac
 cd "$work/build"
 "$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/doc/example_project/spring.prm" \
   -s "Postprocessors/List=history, step histogram"
