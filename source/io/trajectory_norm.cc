@@ -32,6 +32,12 @@ namespace estep
     integral = in.get<double>();
   }
 
+  bool
+  TrajectoryNorm::runs_on_every_rank() const
+  {
+    return true;
+  }
+
   double
   TrajectoryNorm::h1_norm() const
   {

@@ -2,8 +2,9 @@
 # Install estep into a temporary prefix, build the user plugins of doc/example_project against the
 # installed package (find_package(estep), estep_setup_plugin()), check that a Debug build of them
 # would link estep's deal.II, and run them through the installed estep command: the spring problem by energy-stepping (completed, the terraced energy and the orbit's
-# radius kept), then by the plugin integrator with the plugin postprocessor; the plugin integrator
-# is refused for impenetrable contact.
+# radius kept), then by the plugin integrator with the plugin postprocessor, and with the H1 norm
+# on a cube on 1 and 2 MPI processes (the same norm); the plugin integrator is refused for
+# impenetrable contact.
 set -eu
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -32,6 +33,23 @@ cd "$work/build"
   -s "Postprocessors/List=history, max speed" -s "Output directory=euler_output" \
   -s "Time integration/Method=symplectic euler" \
   -s "Time integration/Symplectic Euler/Time step=1e-3"
+# On 2 MPI processes, the plugin integrator, which leaves dense_state() to its default (a
+# collective evaluation of V), with the H1 norm, which asks for it: the run completes, with the
+# norm of the run on one process.
+h1=("$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/parameter_files/quick_start.prm"
+  -s "Additional shared libraries=./libexample_plugins.so" -s "Elastic body/Mesh/Subdivisions=3"
+  -s "Time integration/Method=symplectic euler" -s "Time integration/Symplectic Euler/Time step=0.05"
+  -s "Time integration/End time=1" -s "Postprocessors/List=history, h1 norm")
+"${h1[@]}" -s "Output directory=h1_one" > h1_one.log
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1  # CI runs as root
+timeout 120 "$MPIEXEC" --bind-to none --oversubscribe -np 2 "${h1[@]}" -s "Output directory=h1_two" \
+  > h1_two.log 2>&1 || { cat h1_two.log; echo "the H1 norm on 2 processes failed"; exit 1; }
+python3 -c '
+import json
+one, two = (json.load(open(d + "/summary.json")) for d in ("h1_one", "h1_two"))
+assert two["status"] == "completed" and two["MPI processes"] == 2, two["status"]
+assert one["h1 norm"] == two["h1 norm"], (one["h1 norm"], two["h1 norm"])
+'
 # A plugin integrator that does not follow constraint events is refused for impenetrable contact,
 # through which it would step, before any output.
 if "$work/prefix/bin/estep" "$ESTEP_SOURCE_DIR/parameter_files/ball_collision_impenetrable.prm" \

@@ -59,12 +59,13 @@ namespace estep
     /**
      * Whether, on several MPI processes, it runs on every one (each writing
      * its own part, as field output writes a piece per process) rather than
-     * on the first alone. Such a postprocessor must not call what the
-     * processes compute together (MechanicalSystem::energy(),
-     * TimeIntegrator::dense_output(); dense_state() is fine), and only the
-     * first process's state goes into checkpoints. It may make collective
-     * calls of its own (HDF5 output writes one file together): those that
-     * run on every rank are started, resumed and called in the same order
+     * on the first alone. Such a postprocessor calls what the processes
+     * compute together (MechanicalSystem::energy(),
+     * TimeIntegrator::dense_output(), and dense_state() unless the
+     * integrator overrides it) on every process alike or not at all, and
+     * only the first process's state goes into checkpoints. It may make
+     * collective calls of its own (HDF5 output writes one file together): those
+     * that run on every rank are started, resumed and called in the same order
      * on every process, and start before the others (start_order()). The
      * default: false.
      */

@@ -11,6 +11,10 @@ namespace estep
    * step by step with three-point Gauss quadrature on the integrator's dense
    * output: exact for energy-stepping (q linear, q' constant on each step),
    * fifth order for the cubic Hermite output of Newmark.
+   *
+   * On several MPI processes it runs on every one, each on the whole state,
+   * so that an integrator's dense_state() may be collective (its default
+   * calls dense_output(), which evaluates V on all processes together).
    */
   class TrajectoryNorm : public Postprocessor
   {
@@ -28,6 +32,10 @@ namespace estep
     /** Adds "h1 norm". */
     void
     add_to_summary(JsonObject &summary) const override;
+
+    /** True: see the class. */
+    bool
+    runs_on_every_rank() const override;
 
     /** The H1 norm accumulated so far. */
     double

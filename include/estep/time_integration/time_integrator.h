@@ -67,10 +67,10 @@ namespace estep
     /**
      * The positions and velocities of dense_output() at time t, without the
      * energies (NaN): what an observer that needs only the state asks for.
-     * It touches no global sum, so on several MPI ranks one rank may call it
-     * alone (dense_output() evaluates V, which all ranks must do together).
-     * The default calls dense_output(); an integrator to be run on several
-     * ranks with such observers overrides it.
+     * The default calls dense_output(), which evaluates V (on several MPI
+     * ranks a sum they compute together, so the postprocessors that call
+     * dense_state() run on every rank); an override that skips V is
+     * cheaper.
      */
     virtual Snapshot
     dense_state(const double t) const;
