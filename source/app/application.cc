@@ -290,6 +290,12 @@ namespace estep
            dealii::Utilities::split_string_list(first_reading.get(entry), ','))
         {
           const std::size_t errors_before = plugin_registration_errors().size();
+          const std::size_t registrations_before = plugin_registration_count();
+          // A library loaded already (named twice) registers nothing again.
+          void *const loaded_before =
+            dlopen(library.c_str(), RTLD_NOW | RTLD_NOLOAD);
+          if (loaded_before != nullptr)
+            dlclose(loaded_before);
           if (dlopen(library.c_str(), RTLD_NOW | RTLD_GLOBAL) == nullptr)
             throw std::runtime_error(entry + ": cannot load <" + library +
                                      ">: " + dlerror());
@@ -297,6 +303,13 @@ namespace estep
             throw std::runtime_error(
               entry + ": <" + library +
               ">: " + plugin_registration_errors()[errors_before]);
+          if (loaded_before == nullptr &&
+              plugin_registration_count() == registrations_before)
+            throw std::runtime_error(
+              entry + ": <" + library +
+              "> registers no plugin (no ESTEP_REGISTER_PROBLEM, _MATERIAL, "
+              "_INTEGRATOR or _POSTPROCESSOR in it): is it the library of "
+              "your plugins?");
         }
     }
 
@@ -1021,6 +1034,8 @@ namespace estep
         const CommandLine command = parse_command_line(argc, argv);
         if (command.help)
           {
+            // With the plugins of the libraries the input names.
+            load_plugin_libraries(command);
             print_help(std::cout);
             return exit_success;
           }

@@ -8,4 +8,11 @@ namespace estep
     static std::vector<std::string> errors;
     return errors;
   }
+
+  std::size_t &
+  plugin_registration_count()
+  {
+    static std::size_t count = 0;
+    return count;
+  }
 } // namespace estep

@@ -189,9 +189,11 @@ expect 1 "<leapfrog> does not match the given pattern <\[Selection arkode irk\|a
 expect 1 "<sponge>.*\[Selection neo-Hookean" -- run.prm -s "Material/Model=sponge"
 expect 1 "<history, spreadsheet>.*MultipleSelection contact monitor" -- run.prm -s "Postprocessors/List=history, spreadsheet"
 expect 1 "Postprocessors/List: <history> is listed twice" -- run.prm -s "Postprocessors/List=history, history"
-# Plugin libraries: a missing one, and one that registers a name taken already.
+# Plugin libraries: a missing one, one that registers a name taken already, one that registers
+# nothing.
 expect 1 "Additional shared libraries: cannot load <./missing_plugin.so>" -- run.prm -s "Additional shared libraries=./missing_plugin.so"
 expect 1 "Additional shared libraries: <$ESTEP_DUPLICATE_PLUGIN>: Two time integrator plugins are registered under the name <energy stepping>\.$" -- run.prm -s "Additional shared libraries=$ESTEP_DUPLICATE_PLUGIN"
+expect 1 "Additional shared libraries: <$ESTEP_NOT_A_PLUGIN> registers no plugin" -- run.prm -s "Additional shared libraries=$ESTEP_NOT_A_PLUGIN"
 printf 'set Output directory = run\nsubsection Time integration\n  set Method = leapfrog\nend\n' > selection.prm
 expect 1 "leapfrog.*Method" -- selection.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set End time = -1\nend\n' > times.prm

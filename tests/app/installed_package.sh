@@ -33,6 +33,9 @@ cd "$work/build"
   -s "Postprocessors/List=history, max speed" -s "Output directory=euler_output" \
   -s "Time integration/Method=symplectic euler" \
   -s "Time integration/Symplectic Euler/Time step=1e-3"
+# --help lists the plugins of the libraries the input names.
+"$work/prefix/bin/estep" --help "$ESTEP_SOURCE_DIR/doc/example_project/spring.prm" > help.txt
+grep -q "^  Problem/System: .*spring" help.txt || { cat help.txt; echo "--help does not list spring"; exit 1; }
 # On 2 MPI processes, the plugin integrator, which leaves dense_state() to its default (a
 # collective evaluation of V), with the H1 norm, which asks for it: the run completes, with the
 # norm of the run on one process.

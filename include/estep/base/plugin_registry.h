@@ -4,6 +4,7 @@
 #include <estep/base/parameter_subsections.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,12 @@ namespace estep
    */
   std::vector<std::string> &
   plugin_registration_errors();
+
+  /** How many plugin registrations have been attempted, in every registry,
+   * valid or not: a library loaded at run time that adds none is no plugin
+   * library. */
+  std::size_t &
+  plugin_registration_count();
 
   /**
    * The plugins of one extension point of estep (problems, materials, time
@@ -64,6 +71,7 @@ namespace estep
     bool
     add(Plugin plugin) noexcept
     {
+      ++plugin_registration_count();
       try
         {
           const std::string &name = plugin.name;
