@@ -9,9 +9,12 @@
 #include <estep/io/xdmf_series.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -157,7 +160,20 @@ namespace estep
     const std::filesystem::path directory;
     const Format                format;
     const double                start_time, interval, end_time;
-    double                      next_time;
+    /** The next snapshot's time on the grid start_time + k interval, and
+     * its k (each time computed from k, so that no rounding accumulates). */
+    double        next_time;
+    std::uint64_t next_index = 0;
+
+    /** Move next_time to the grid's next time. */
+    void
+    advance_grid()
+    {
+      ++next_index;
+      next_time = interval > 0. ?
+                    start_time + static_cast<double>(next_index) * interval :
+                    std::numeric_limits<double>::infinity();
+    }
     /** Whether the system has obstacles to draw. */
     bool has_obstacles = false;
     /** This process and the number of processes: on several, each writes
@@ -336,6 +352,9 @@ namespace estep
   {
     Implementation &self = *implementation;
     self.next_time       = in.get<double>();
+    if (self.interval > 0. && std::isfinite(self.next_time))
+      self.next_index = static_cast<std::uint64_t>(
+        std::llround((self.next_time - self.start_time) / self.interval));
     self.series.resize(in.get<std::uint64_t>());
     for (auto &[time, file] : self.series)
       {
@@ -423,12 +442,7 @@ namespace estep
     while (self.next_time <= integrator.time())
       {
         write_at(self.next_time);
-        if (!(self.interval > 0.))
-          {
-            self.next_time = std::numeric_limits<double>::infinity();
-            break;
-          }
-        self.next_time += self.interval;
+        self.advance_grid();
       }
     // The end time gets a snapshot too, as history.csv gets a row there,
     // unless the last snapshot lies within round-off of it; one that stands
@@ -445,7 +459,7 @@ namespace estep
       return;
     write_at(t_end);
     if (self.next_time - t_end <= round_off)
-      self.next_time += self.interval;
+      self.advance_grid();
   }
 
 

@@ -46,6 +46,12 @@ small=(-s "Elastic body/Mesh/Subdivisions=2" -s "Postprocessors/List=field outpu
 "$ESTEP" "$prm" "${small[@]}" -s "Output directory=tenths" -s "Time integration/End time=0.3" \
   -s "Postprocessors/Field output/Interval=0.1" > tenths.log 2>&1 || { cat tenths.log; failures=$((failures + 1)); }
 [[ $(ls tenths/fields | wc -l) == 4 ]] || { echo "to t = 0.3 every 0.1: snapshots at $(times tenths)"; failures=$((failures + 1)); }
+# Each snapshot time is start + k interval, not a running sum of intervals: to t = 1 every 0.1 the
+# last is 1 itself (the sum gives 0.99999999999999989, and then a snapshot at 1 is missing).
+"$ESTEP" "$prm" "${small[@]}" -s "Output directory=grid" -s "Time integration/End time=1" \
+  -s "Postprocessors/Field output/Interval=0.1" > grid.log 2>&1 || { cat grid.log; failures=$((failures + 1)); }
+[[ $(times grid) == *" 0.90000000000000002 1 " && $(ls grid/fields | wc -l) == 11 ]] ||
+  { echo "to t = 1 every 0.1: snapshots at $(times grid)"; failures=$((failures + 1)); }
 # An interval far longer than the run: the start and the end.
 "$ESTEP" "$prm" "${small[@]}" -s "Output directory=long" -s "Time integration/End time=0.02" \
   -s "Postprocessors/Field output/Interval=1e300" > long.log 2>&1 || { cat long.log; failures=$((failures + 1)); }
