@@ -881,6 +881,9 @@ namespace estep
           // first, unless it does not come.
           if (writes_output)
             {
+              // Its postprocessors' finish writes only its own files (the
+              // series of the snapshots written whole, for one).
+              finish_postprocessors(postprocessors, result);
               report_output_failure(summary_file, record, result.message);
               end_all_ranks(exit_failed);
             }

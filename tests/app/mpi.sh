@@ -273,6 +273,11 @@ fails_mid_run piece fields/solution-00006-p1.vtu/blocked "Field output: .*soluti
 # process removes its own when the second's failed).
 ls piece/fields | grep -q "solution-00006-p0.vtu\|solution-00006.pvtu" &&
   fail "piece: a snapshot that the second process could not write stays: $(ls piece/fields)"
+# The series lists every snapshot written whole before (the first process rewrites it at the end,
+# as on one process).
+written=$(ls piece/fields | grep -c "\.pvtu$")
+listed=$(grep -c "<DataSet" piece/solution.pvd)
+[[ $written -gt 1 && $listed == "$written" ]] || fail "piece: solution.pvd lists $listed of $written snapshots"
 
 # refused NAME PATTERN ARGS...: ARGS on 2 processes exit with code 1 and one line matching PATTERN.
 refused() {
