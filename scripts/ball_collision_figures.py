@@ -16,7 +16,6 @@ Usage (from the source directory, after the runs):
   scripts/ball_collision_figures.py [--output output]
 """
 import argparse
-import csv
 import json
 import os
 import sys
@@ -26,9 +25,16 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from run_output import fail, read_history
+
 RUNS = [("ball_collision", "energy-stepping, penalty, h = 1e3", "tab:blue", "-"),
         ("ball_collision_newmark", "Newmark, penalty, dt = 3e-5", "black", "--"),
         ("ball_collision_impenetrable", "energy-stepping, impenetrable", "tab:green", ":")]
+
+
+# The columns the figures draw: energies, steps, and V and Omega of each ball and of the system.
+COLUMNS = ["time", "total_energy", "kinetic_energy", "potential_energy", "min_step", "max_step"]
+COLUMNS += [f"{q}{owner}_{c}" for q in ("V", "Omega") for owner in ("1", "2", "") for c in "xyz"]
 
 
 def load(root, run):
@@ -38,29 +44,30 @@ def load(root, run):
     summary_path = os.path.join(directory, "summary.json")
     if not (os.path.exists(history_path) and os.path.exists(summary_path)):
         return None
-    with open(history_path) as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        return None
-    history = {key: [float(r[key]) for r in rows] for key in rows[0]}
-    with open(summary_path) as f:
-        return history, json.load(f)
+    history = read_history(history_path, COLUMNS)
+    try:
+        with open(summary_path) as f:
+            return history, json.load(f)
+    except ValueError as error:
+        fail(f"<{summary_path}> is not JSON: {error}")
 
 
 def energies(root, runs, figure):
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5))
     for (history, summary), label, colour, style in runs:
         t = history["time"]
+        # Steps from the second row on: the first precedes every step (its steps are 0).
+        t_steps = t[1:]
+        min_step, max_step = history["min_step"][1:], history["max_step"][1:]
         for key, name in (("total_energy", "T + V"), ("kinetic_energy", "T"),
                           ("potential_energy", "V")):
             left.plot(t, history[key], color=colour, ls=style, lw=0.9,
                       label=f"{name}, {label}" if key == "total_energy" else None)
         if summary["method"] != "energy stepping":
-            right.plot(t, history["max_step"], color=colour, ls=style, lw=0.9, label=label)
+            right.plot(t_steps, max_step, color=colour, ls=style, lw=0.9, label=label)
         else:
-            right.fill_between(t, history["min_step"], history["max_step"], color=colour,
-                               alpha=0.35, lw=0)
-            right.plot(t, history["min_step"], color=colour, lw=0.6, label=label + " (range per row)")
+            right.fill_between(t_steps, min_step, max_step, color=colour, alpha=0.35, lw=0)
+            right.plot(t_steps, min_step, color=colour, lw=0.6, label=label + " (range per row)")
     left.set_xlabel("t")
     left.set_ylabel("energy")
     left.set_title("total (top), kinetic and potential energy")

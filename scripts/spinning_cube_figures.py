@@ -19,14 +19,19 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from run_output import read_history
+
+
+# The columns the comparison figures draw.
+COLUMNS = ["time", "tracked_x", "tracked_y", "tracked_z", "total_energy", "potential_energy",
+           "kinetic_energy", "angular_momentum_z"]
+
 
 def history(root, run):
     path = os.path.join(root, run, "history.csv")
     if not os.path.exists(path):
         return None
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {key: [float(r[key]) for r in rows] for key in rows[0]}
+    return read_history(path, COLUMNS)
 
 
 def comparison(root, figure, runs, title):

@@ -55,8 +55,9 @@ namespace estep
       "0",
       dealii::Patterns::Integer(0, 4096),
       "Threads the loops over cells use (in each MPI process): 0 for one "
-      "per core (at most DEAL_II_NUM_THREADS if that is set; under MPI the "
-      "cores of a machine divided by its processes), 1 for none. The "
+      "per core (under MPI the cores of a machine divided by its "
+      "processes), 1 for none; DEAL_II_NUM_THREADS, if set, caps any "
+      "number. The "
       "trajectory is the same to the last bit on any number of threads and "
       "processes (the command line's --threads N sets this entry).");
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The colliding balls through the application, to t = 0.5 as in the reference text: the penalty
 # run (parameter_files/ball_collision.prm) and the exact-impenetrability run, then
-# scripts/ball_collision_figures.py on their output.
+# scripts/ball_collision_figures.py on their output (and its one-line errors on a history cut
+# short and on one of another problem).
 # Checked from summary.json and history.csv: both runs complete and conserve the terraced
 # energy and the total linear and angular momentum to 1e-10 relative; the penalty run has
 # intersecting faces during contact, the impenetrable run none at any step end; both report a
@@ -111,6 +112,21 @@ for file in figure_2_16.png figure_2_17.png ball_collision_table.md; do
 done
 grep -q "ball_collision_newmark: no history.csv" figures.log || fail "the missing Newmark run is not reported"
 grep -q "Hertz estimate 0.0694" output/ball_collision_table.md || fail "the table lacks the Hertz estimate"
+# A history cut short, and one of another problem: one line naming the file, before any figure.
+mkdir -p cut/ball_collision other/ball_collision
+cp output/ball_collision/summary.json cut/ball_collision/
+head -c 2000 output/ball_collision/history.csv > cut/ball_collision/history.csv
+"$ESTEP_SOURCE_DIR/scripts/ball_collision_figures.py" --output cut > cut.log 2>&1 &&
+  fail "the figure script drew a history cut short"
+grep -q "^ball_collision_figures.py: error: <cut/ball_collision/history.csv>, line [0-9]*: column .* not a number" cut.log ||
+  fail "a history cut short: $(tail -2 cut.log)"
+cp output/ball_collision/summary.json other/ball_collision/
+printf 'time,kinetic_energy\n0,1\n' > other/ball_collision/history.csv
+"$ESTEP_SOURCE_DIR/scripts/ball_collision_figures.py" --output other > other.log 2>&1 &&
+  fail "the figure script drew the history of another problem"
+grep -q "^ball_collision_figures.py: error: <other/ball_collision/history.csv> has no column total_energy" other.log ||
+  fail "a history of another problem: $(tail -2 other.log)"
+[[ ! -e cut/figure_2_16.png && ! -e other/figure_2_16.png ]] || fail "a figure was drawn before the error"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
 [[ $failures == 0 ]]
