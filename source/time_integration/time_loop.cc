@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace estep
@@ -57,6 +59,34 @@ namespace estep
     public:
       using std::runtime_error::runtime_error;
     };
+
+    /**
+     * Throws std::logic_error, naming the integrator, if its last step broke
+     * what every TimeIntegrator must do (an integrator of a user's own may):
+     * step from @p t_before to at most @p t_limit, and count the step.
+     */
+    void
+    check_step_rules(const TimeIntegrator &integrator,
+                     const double          t_before,
+                     const std::uint64_t   steps_before,
+                     const double          t_limit)
+    {
+      std::ostringstream message;
+      if (integrator.time() > t_limit)
+        message << "stepped from t = " << t_before << " to "
+                << integrator.time() << ", past the limit " << t_limit
+                << " it was given";
+      else if (integrator.time() > t_before &&
+               integrator.n_steps() == steps_before)
+        message << "stepped from t = " << t_before << " to "
+                << integrator.time() << " without counting the step "
+                << "(count_step())";
+      else
+        return;
+      throw std::logic_error(
+        "Time integration/Method = " + integrator.name() + " " + message.str() +
+        ": a time integrator must not (doc/extending.md).");
+    }
 
     /** The message of a run that an unexpected exception ended at @p t. */
     std::string
@@ -274,8 +304,10 @@ namespace estep
             emit_outputs_until(settings.start_time);
           while (integrator.time() < t_end)
             {
-              const double t_before = integrator.time();
+              const double        t_before     = integrator.time();
+              const std::uint64_t steps_before = integrator.n_steps();
               integrator.step(t_end);
+              check_step_rules(integrator, t_before, steps_before, t_end);
               state.steps_in_place =
                 (integrator.time() > t_before) ? 0 : state.steps_in_place + 1;
               if (state.steps_in_place == max_steps_in_place)

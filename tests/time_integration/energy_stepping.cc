@@ -397,4 +397,81 @@ namespace
         EXPECT_GE(result.final_time, 0.6);
       }
   }
+
+  /** A drifting integrator (q += dt v) that breaks one rule of a time
+   * integrator, as one of a user's own may. */
+  class RuleBreaker : public estep::TimeIntegrator
+  {
+  public:
+    enum class Rule
+    {
+      none,
+      past_limit,
+      no_count
+    };
+    RuleBreaker(const estep::MechanicalSystem &system, const Rule broken)
+      : TimeIntegrator(system)
+      , broken(broken)
+    {}
+    std::string
+    name() const override
+    {
+      return "rule breaker";
+    }
+    void
+    initialize(const double t0, const Vector &q0, const Vector &v0) override
+    {
+      t = t_previous = t0;
+      q              = q0;
+      v              = v0;
+    }
+    void
+    step(const double t_limit) override
+    {
+      const double dt = 0.3;
+      t_previous      = t;
+      t = broken == Rule::past_limit ? t + dt : std::min(t + dt, t_limit);
+      q.add(t - t_previous, v);
+      if (broken != Rule::no_count)
+        count_step();
+    }
+    estep::Snapshot
+    dense_output(const double time) const override
+    {
+      return hermite_dense_output(time, q, v);
+    }
+    std::vector<estep::Counter>
+    counters() const override
+    {
+      return {{"steps", n_steps()}};
+    }
+
+  private:
+    const Rule broken;
+  };
+
+  TEST(TimeLoop, AnIntegratorThatBreaksItsRulesFailsTheRun)
+  {
+    const Problem    argon = estep::testing::argon_cluster();
+    TimeLoopSettings settings;
+    settings.end_time        = 1.;
+    settings.output_interval = 0.5;
+    const auto run           = [&](const RuleBreaker::Rule rule) {
+      RuleBreaker integrator(*argon.system, rule);
+      integrator.initialize(0., argon.q0, argon.v0);
+      return run_time_loop(integrator, settings, {});
+    };
+    EXPECT_EQ(run(RuleBreaker::Rule::none).status, RunStatus::completed);
+    const TimeLoopResult past = run(RuleBreaker::Rule::past_limit);
+    EXPECT_EQ(past.status, RunStatus::failed);
+    EXPECT_NE(past.message.find("rule breaker stepped from t = 0.9 to 1.2, "
+                                "past the limit 1 it was given"),
+              std::string::npos)
+      << past.message;
+    const TimeLoopResult uncounted = run(RuleBreaker::Rule::no_count);
+    EXPECT_EQ(uncounted.status, RunStatus::failed);
+    EXPECT_NE(uncounted.message.find("without counting the step"),
+              std::string::npos)
+      << uncounted.message;
+  }
 } // namespace
