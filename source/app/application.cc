@@ -423,13 +423,34 @@ namespace estep
           " is not finite (" + std::to_string(T0) +
           "): its initial velocity is too large for double precision.");
       // Before any integrator starts from it, whichever (explicit Newmark
-      // would call it unstable, the implicit methods' solvers fail).
-      if (!std::isfinite(problem.system->energy(problem.q0)))
+      // would call it unstable, the implicit methods' solvers fail). An
+      // inverted cell gives +infinity; NaN is a defect of a material or
+      // system (of a user's own, say), as is a gradient that is not finite.
+      const double V0 = problem.system->energy(problem.q0);
+      if (std::isnan(V0))
+        throw std::runtime_error(
+          "The potential energy of the " + problem.system->name() +
+          " at its initial configuration is NaN: a material or system of your "
+          "own computes a NaN there (the built-in ones give +infinity where a "
+          "cell inverts).");
+      if (!std::isfinite(V0))
         throw std::runtime_error(
           "The initial configuration of the " + problem.system->name() +
           " is inadmissible: its potential energy is not finite (a cell "
           "inverted or flattened, or an atom on another): check its mesh, "
           "placement and initial displacement.");
+      Vector g(problem.q0.size());
+      problem.system->gradient(problem.q0, g);
+      for (unsigned int i = 0; i < g.size(); ++i)
+        if (!std::isfinite(g[i]))
+          throw std::runtime_error(
+            "The gradient of the potential energy of the " +
+            problem.system->name() +
+            " at its initial configuration is not finite (component " +
+            std::to_string(i) +
+            "): the forces there exceed double precision (points or atoms "
+            "almost on each other), or a material or system of your own "
+            "computes no finite derivative there.");
     }
 
     /** The integrator chosen in `Time integration`, initialised with the

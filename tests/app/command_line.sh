@@ -199,6 +199,8 @@ expect 1 "leapfrog.*Method" -- selection.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set End time = -1\nend\n' > times.prm
 expect 1 "End time: must be larger than the start time" -- times.prm
 printf 'set Output directory = run\nsubsection Argon cluster\n  set Initial velocities = 1, 2; 3, 4\nend\n' > counts.prm
+# Two atoms 1e-25 apart: a finite energy, forces beyond double precision.
+expect 1 "gradient of the potential energy of the lennard-jones cluster at its initial configuration is not finite \(component 0\): the forces there exceed double precision" -- "$ESTEP_SOURCE_DIR/parameter_files/argon_cluster.prm" -s "Output directory=run" -s "Argon cluster/Initial positions=0, 0; 1e-25, 0; 0.34, 0.17; 0.36, -0.21; -0.02, -0.40; -0.35, -0.16; -0.31, 0.21"
 expect 1 "7 initial positions but 2 initial velocities" -- counts.prm
 expect 1 "<run.txt> does not exist" -- run.txt
 touch run.txt
