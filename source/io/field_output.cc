@@ -8,10 +8,12 @@
 #include <estep/io/vtu_file.h>
 #include <estep/io/xdmf_series.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -560,9 +562,15 @@ namespace estep
               }
             const std::filesystem::path file =
               self.directory / "fields" / file_name;
-            std::filesystem::remove(file);
+            // An earlier file goes first; if it cannot (the directory is
+            // gone), writing the new one fails below and says so.
+            std::error_code not_removed;
+            std::filesystem::remove(file, not_removed);
             unfinished.add(file);
             std::ofstream out(file);
+            if (!out)
+              throw std::runtime_error("cannot write <" + file.string() +
+                                       ">: " + std::strerror(errno));
             self.vtu[b]->write(out, snapshot.t, n, point_fields, cell_fields);
             out.close();
             if (!out)
