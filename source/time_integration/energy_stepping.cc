@@ -95,6 +95,18 @@ namespace estep
     if (!std::isfinite(V0))
       throw std::runtime_error(
         "The initial configuration is inadmissible: its potential energy is not finite.");
+    // The terrace index V / h must be an integer a double holds exactly
+    // (and a long long at all).
+    if (!(std::abs(V0 / h) < 9007199254740992.))
+      {
+        std::ostringstream message;
+        message << "Time integration/Energy stepping/Energy step: h = " << h
+                << " is too small for the initial potential energy V = " << V0
+                << ": V / h exceeds 2^53, and the terraces would lie below "
+                   "the round-off of V; take h of at least |V| / 2^53 (and, "
+                   "for a search that can advance, far more).";
+        throw std::runtime_error(message.str());
+      }
     level = static_cast<long long>(std::floor(V0 / h - c));
     // Round-off of V0 / h - c may leave V0 just below its level.
     if (V0 < level_height(level))

@@ -261,6 +261,20 @@ namespace estep
         while (!outputs.done() && outputs.next() <= t_reached)
           {
             const Snapshot snapshot = integrator.dense_output(outputs.next());
+            // An inverted cell, or a state beyond what double precision
+            // evaluates (a body flung 1e100 m away, one of 1e-30 m): no row
+            // of it is written.
+            if (!std::isfinite(snapshot.kinetic_energy) ||
+                !std::isfinite(snapshot.potential_energy))
+              {
+                std::ostringstream message;
+                message << "The run became unstable at t = " << snapshot.t
+                        << ": the energies T = " << snapshot.kinetic_energy
+                        << " and V = " << snapshot.potential_energy
+                        << " are not both finite (a cell inverted, or the "
+                           "state beyond what double precision evaluates).";
+                throw UnstableRun(message.str());
+              }
             if (state.energy_scale > 0.)
               {
                 const double drift =

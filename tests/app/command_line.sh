@@ -199,6 +199,12 @@ expect 1 "leapfrog.*Method" -- selection.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set End time = -1\nend\n' > times.prm
 expect 1 "End time: must be larger than the start time" -- times.prm
 printf 'set Output directory = run\nsubsection Argon cluster\n  set Initial velocities = 1, 2; 3, 4\nend\n' > counts.prm
+# A body flung at 1e100 m/s: its energy overflows at the first history row, which is not written.
+expect 2 "The run became unstable at t = 0.01: the energies T = .* and V = inf are not both finite" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_ball_drop.prm" -s "Output directory=flung" -s "Time integration/End time=0.02" -s "Output/History interval=0.01" -s "Scene/Obstacles/Half-spaces=" -s "Contact/Mode=none" -s "Scene/Body 1/Initial velocity/Translational velocity=1e100, 0, 0"
+[[ $(wc -l < flung/history.csv) == 2 ]] || fail "flung: history.csv holds rows beyond t = 0: $(cat flung/history.csv | cut -c1-80)"
+# An energy step below the round-off of V: refused before the output directory is touched.
+expect 1 "Energy step: h = 1e-300 is too small for the initial potential energy" -- "$ESTEP_SOURCE_DIR/parameter_files/scene_ball_drop.prm" -s "Output directory=tiny_h" -s "Time integration/Energy stepping/Energy step=1e-300"
+[[ ! -e tiny_h ]] || fail "tiny_h: an output directory was written for a refused energy step"
 # Two atoms 1e-25 apart: a finite energy, forces beyond double precision.
 expect 1 "gradient of the potential energy of the lennard-jones cluster at its initial configuration is not finite \(component 0\): the forces there exceed double precision" -- "$ESTEP_SOURCE_DIR/parameter_files/argon_cluster.prm" -s "Output directory=run" -s "Argon cluster/Initial positions=0, 0; 1e-25, 0; 0.34, 0.17; 0.36, -0.21; -0.02, -0.40; -0.35, -0.16; -0.31, 0.21"
 expect 1 "7 initial positions but 2 initial velocities" -- counts.prm
