@@ -234,6 +234,8 @@ for method in "energy stepping" "explicit newmark" "ida bdf"; do
   expect_error "The initial configuration of the scene is inadmissible: its potential energy is not finite" "$files/scene_cantilever.prm" -s "Output directory=inverted" -s "Scene/Body 1/Initial displacement/Function expression=-2*x; 0; 0" -s "Time integration/Method=$method"
 done
 [[ ! -e inverted ]] || fail "a refused initial configuration wrote an output directory"
+# A shift that leaves the body flat in double precision names the placement.
+expect_error "Scene/Body 1/Placement: the placed mesh: The mesh has a degenerate tetrahedron" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Body 1/Placement/Shift=1e30, 0, 0"
 expect_error "Scene/Obstacles/Surface files: STL file <missing.stl>: cannot be opened" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Surface files=missing.stl"
 expect_error "Scene: Body 1 intersects obstacle floor.stl at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
 expect_error "Scene/Obstacles/Half-spaces: <0, 0, 0, 0, 0, 0> has a zero normal\.$" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=0, 0, 0, 0, 0, 0"
