@@ -37,8 +37,9 @@ namespace estep
       dealii::Patterns::Double(0.),
       "Impenetrability mode: distance tolerance (absolute length) of the "
       "continuous collision detection; primitives closer than this count as "
-      "touching. Must be positive, and at most a thousandth of the bodies' "
-      "shortest boundary edge.");
+      "touching. Must be positive, at most a thousandth of the bodies' "
+      "shortest boundary edge, and at least 2^-45 times the largest "
+      "coordinate of the bodies and obstacles (round-off).");
     prm.leave_subsection();
   }
 

@@ -348,6 +348,43 @@ namespace estep
                 << " (a thousandth of that edge).";
         throw std::runtime_error(message.str());
       }
+    // The collision detection resolves its tolerance only where round-off
+    // is smaller: a surface or body beyond that is refused before the run.
+    if (has_constraints())
+      {
+        const double limit =
+          contact::ccd_coordinate_limit(contact_parameters.ccd_tolerance);
+        const auto largest = [](const auto &coordinates) {
+          double m = 0.;
+          for (const double x : coordinates)
+            m = std::max(m, std::abs(x));
+          return m;
+        };
+        for (unsigned int i = 0; i < bodies.size() + surfaces.size(); ++i)
+          {
+            const double m = i < bodies.size() ?
+                               largest(bodies[i]->reference_configuration()) :
+                               largest(surfaces[i - bodies.size()].points);
+            if (m > limit)
+              {
+                std::ostringstream message;
+                message << "Contact/Collision tolerance = "
+                        << contact_parameters.ccd_tolerance << ": "
+                        << (i < bodies.size() ?
+                              "body " + std::to_string(i + 1) :
+                              "obstacle " + surfaces[i - bodies.size()].name)
+                        << " has coordinates as large as " << m
+                        << ", where the collision detection's round-off "
+                           "exceeds half this tolerance and it cannot tell "
+                           "contact from separation; it needs coordinates "
+                           "within 2^45 times the tolerance ("
+                        << limit << "): bring the geometry closer to the "
+                        << "origin or give a tolerance of at least "
+                        << m / 0x1p45 << ".";
+                throw std::runtime_error(message.str());
+              }
+          }
+      }
     const unsigned int n_body_triangles = triangles.size();
     for (unsigned int s = 0; s < surfaces.size(); ++s)
       for (const auto &t : surfaces[s].triangles)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -298,13 +299,28 @@ namespace estep
           if (s0 >= best)
             continue;
           std::array<Point3, 4> x0, x1;
+          double                largest = 0.;
           for (unsigned int k = 0; k < 4; ++k)
             for (unsigned int c = 0; c < 3; ++c)
               {
                 const unsigned int m = 3 * query.points[k] + c;
                 x0[k][c]             = q[m] + s0 * v[m];
                 x1[k][c]             = q[m] + best * v[m];
+                largest =
+                  std::max({largest, std::abs(x0[k][c]), std::abs(x1[k][c])});
               }
+          if (largest > ccd_coordinate_limit(settings.tolerance))
+            {
+              std::ostringstream message;
+              message << "the contact detection met points at coordinates as "
+                         "large as "
+                      << largest << ", where its round-off exceeds half the "
+                      << "collision tolerance " << settings.tolerance
+                      << " and it cannot tell contact from separation (it "
+                         "needs coordinates within 2^45 times the tolerance, "
+                      << ccd_coordinate_limit(settings.tolerance) << ").";
+              throw std::runtime_error(message.str());
+            }
           const CcdResult r = query.edge_edge ?
                                 edge_edge_ccd(x0, x1, settings) :
                                 vertex_face_ccd(x0, x1, settings);

@@ -263,6 +263,10 @@ expect_error "Scene: Body 2 lies inside Body 1 at t = 0" "$files/scene_ball_drop
 expect_error "Scene: Body 1 lies inside Body 2 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Number of bodies=2" -s "Scene/Body 2/Mesh/Type=ball" -s "Scene/Body 2/Mesh/Radius=0.3" -s "Scene/Body 2/Placement/Shift=0, 0, 0.6"
 printf 'solid inner\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0.6\n   vertex 0.01 0 0.6\n   vertex 0 0.01 0.6\n  endloop\n endfacet\nendsolid inner\n' > inner.stl
 expect_error "Scene: obstacle inner.stl lies inside Body 1 at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=inner.stl"
+# A floor 2e10 wide: the collision detection's round-off there exceeds its tolerance (it used
+# to take ever shorter steps at the first contact and never end).
+sed 's/vertex \([-0-9]*\) \([-0-9]*\) 0/vertex \1e10 \2e10 0/' floor.stl > wide_floor.stl
+expect_error "Contact/Collision tolerance = 1e-06: obstacle wide_floor.stl has coordinates as large as 1e\+10, where the collision detection's round-off exceeds half this tolerance" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=wide_floor.stl"
 # An entry that the body's velocity type does not read: a warning naming the body.
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=unread" -s "Time integration/End time=0.001" -s "Scene/Body 1/Initial velocity/Variable names=u,v,w" > unread.log 2>&1 || fail "a scene with an unread entry failed: $(cat unread.log)"
 grep -q "warning: Scene/Body 1/Initial velocity/Variable names: Scene/Body 1/Initial velocity/Type = rigid motion does not read it (function does); it is ignored." unread.log || fail "no warning for an unread entry of a scene body: $(cat unread.log)"

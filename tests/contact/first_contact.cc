@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <stdexcept>
 #include <vector>
 
 using namespace estep::contact;
@@ -75,6 +76,38 @@ TEST(FirstContact, DistantEdgesOnMeetingLinesAreNotTouching)
 
   // Moving towards y > 0, it passes beside triangle 0 and never touches it.
   EXPECT_FALSE(Scene(0.1).first_contact(10.).has_value());
+}
+
+TEST(FirstContact, CoordinatesBeyondTheToleranceAreRefused)
+{
+  // The scene of the first test, moved by a distance: within 2^45 times the
+  // tolerance the same contact is found; beyond it the search refuses rather
+  // than subdivide to the iteration cap at every step.
+  CcdSettings settings;
+  for (const double shift : {0.9, 1.1})
+    {
+      Scene moved(-0.1);
+      for (double &x : moved.q)
+        x += shift * ccd_coordinate_limit(settings.tolerance);
+      const auto search = [&] {
+        return find_first_contact(moved.triangles,
+                                  {},
+                                  moved.q.data(),
+                                  moved.v.data(),
+                                  18,
+                                  10.,
+                                  settings);
+      };
+      if (shift < 1.)
+        {
+          const auto hit = search();
+          ASSERT_TRUE(hit.has_value());
+          EXPECT_GT(hit->s, 4.3);
+          EXPECT_LE(hit->s, 13. / 2.95 + 1e-6);
+        }
+      else
+        EXPECT_THROW(search(), std::runtime_error);
+    }
 }
 
 TEST(FirstContact, TouchingPairsApproachOrSeparate)

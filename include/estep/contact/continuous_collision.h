@@ -44,6 +44,21 @@ namespace estep
     };
 
     /**
+     * The largest coordinate magnitude at which the CCD of tolerance
+     * @p tolerance can still certify a contact: 2^45 tolerance (1e-6 gives
+     * about 3.5e7). The CCD widens every value by its round-off bound, 2^-46
+     * times the largest coordinate of the query, and reports a contact only
+     * for a box whose widened range lies within the tolerance; beyond this
+     * limit the bound is more than half the tolerance, and a query that meets
+     * a contact subdivides until the iteration cap instead.
+     */
+    constexpr double
+    ccd_coordinate_limit(const double tolerance)
+    {
+      return 0x1p45 * tolerance;
+    }
+
+    /**
      * Relative volume below which the four points of a CCD query count as
      * coplanar (see ccd_query_is_non_degenerate()): 2^-42, about 2.3e-13 or
      * 2,048 units of round-off u = 2^-53.
