@@ -10,9 +10,12 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -51,20 +54,121 @@ namespace estep
 
 
 
+  namespace
+  {
+    /** Points with identical coordinates (exactly) become one, numbered in
+     * the order of their first appearance. */
+    class PointNumbering
+    {
+    public:
+      explicit PointNumbering(StaticSurface &surface)
+        : surface(surface)
+      {}
+
+      unsigned int
+      operator()(const std::array<double, 3> &x)
+      {
+        const auto [it, inserted] =
+          point_of.emplace(x, static_cast<unsigned int>(point_of.size()));
+        if (inserted)
+          surface.points.insert(surface.points.end(), x.begin(), x.end());
+        return it->second;
+      }
+
+    private:
+      StaticSurface                                &surface;
+      std::map<std::array<double, 3>, unsigned int> point_of;
+    };
+
+    /** The number of triangles of a binary STL file of @p size bytes whose
+     * bytes 80 to 83 are @p count_bytes, if the size is that of so many
+     * (84 + 50 per triangle); none otherwise. */
+    std::optional<std::uint32_t>
+    binary_stl_triangles(const unsigned char  count_bytes[4],
+                         const std::uintmax_t size)
+    {
+      const std::uint32_t n =
+        count_bytes[0] | (count_bytes[1] << 8) | (count_bytes[2] << 16) |
+        (static_cast<std::uint32_t>(count_bytes[3]) << 24);
+      if (size != 84 + 50 * static_cast<std::uintmax_t>(n))
+        return std::nullopt;
+      return n;
+    }
+
+    /** A little-endian IEEE single of a binary STL file. */
+    double
+    read_float(const unsigned char *bytes)
+    {
+      const std::uint32_t bits = bytes[0] | (bytes[1] << 8) | (bytes[2] << 16) |
+                                 (static_cast<std::uint32_t>(bytes[3]) << 24);
+      float x;
+      std::memcpy(&x, &bits, sizeof(x));
+      return x;
+    }
+
+    void
+    read_binary_stl(std::istream       &in,
+                    const std::uint32_t n_triangles,
+                    StaticSurface      &surface,
+                    const std::string  &what)
+    {
+      PointNumbering point_number(surface);
+      unsigned char  record[50];
+      for (std::uint32_t t = 0; t < n_triangles; ++t)
+        {
+          if (!in.read(reinterpret_cast<char *>(record), sizeof(record)))
+            throw std::runtime_error(what + "could not be read.");
+          // 12 bytes of normal (not used), three vertices, 2 bytes of
+          // attributes (not used).
+          contact::TriangleIndices triangle;
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              std::array<double, 3> x;
+              for (unsigned int c = 0; c < 3; ++c)
+                x[c] = read_float(record + 12 * (v + 1) + 4 * c);
+              triangle[v] = point_number(x);
+            }
+          surface.triangles.push_back(triangle);
+        }
+    }
+  } // namespace
+
+
+
   StaticSurface
   read_stl_surface(const std::string &filename)
   {
     const std::string what = "STL file <" + filename + ">: ";
     if (std::filesystem::is_directory(filename))
       throw std::runtime_error(what + "is a directory, not a file.");
-    std::ifstream in(filename);
+    std::ifstream in(filename, std::ios::binary);
     if (!in)
       throw std::runtime_error(what + "cannot be opened.");
 
     StaticSurface surface;
     surface.name = filename;
-    std::map<std::array<double, 3>, unsigned int> point_of;
-    std::vector<unsigned int>                     loop;
+
+    // Binary if the size is that of a binary file of the triangles its
+    // bytes 80 to 83 count, whatever its header says (exporters often begin
+    // it with "solid", as an ASCII file begins).
+    {
+      char                 header[84];
+      std::error_code      error;
+      const std::uintmax_t size = std::filesystem::file_size(filename, error);
+      if (!error && in.read(header, sizeof(header)))
+        if (const auto n = binary_stl_triangles(
+              reinterpret_cast<const unsigned char *>(header) + 80, size))
+          {
+            read_binary_stl(in, *n, surface, what);
+            surface.check();
+            return surface;
+          }
+      in.clear();
+      in.seekg(0);
+    }
+
+    PointNumbering            point_number(surface);
+    std::vector<unsigned int> loop;
     // Where the reader is: each keyword is accepted in one place only, so
     // that a file cut short (or spliced) is refused, not read in part.
     enum class Place
@@ -92,9 +196,9 @@ namespace estep
           place = Place::in_solid;
         }
       else if (place == Place::before_solid)
-        throw std::runtime_error(what +
-                                 "not an ASCII STL file (it does not start "
-                                 "with 'solid').");
+        throw std::runtime_error(
+          what + "neither an ASCII STL file (it does not start with 'solid') "
+                 "nor a binary one (84 bytes and 50 per triangle).");
       else if (word == "facet")
         {
           expect(place == Place::in_solid);
@@ -120,11 +224,7 @@ namespace estep
             if (!(in >> c))
               throw std::runtime_error(what +
                                        "a vertex without three numbers.");
-          const auto [it, inserted] =
-            point_of.emplace(x, static_cast<unsigned int>(point_of.size()));
-          if (inserted)
-            surface.points.insert(surface.points.end(), x.begin(), x.end());
-          loop.push_back(it->second);
+          loop.push_back(point_number(x));
         }
       else if (word == "endloop")
         {

@@ -298,7 +298,8 @@ namespace estep
         "",
         dealii::Patterns::Anything(),
         "Rigid obstacles given as triangle surfaces, a comma-separated list "
-        "of files: ASCII STL (.stl) or gmsh surface meshes of triangles "
+        "of files: STL (.stl, ASCII or binary) or gmsh surface meshes of "
+        "triangles "
         "(.msh), read as they are (no placement; paths relative to the "
         "working directory). The bodies touch them from either side.");
       prm.leave_subsection();

@@ -20,7 +20,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -42,7 +44,7 @@ namespace
   std::string
   write_file(const std::string &name, const std::string &text)
   {
-    std::ofstream out(name);
+    std::ofstream out(name, std::ios::binary);
     out << text;
     return name;
   }
@@ -127,6 +129,48 @@ TEST(StaticSurface, ReadsStl)
     EXPECT_EQ(floor.points[i], expected[i]);
   EXPECT_EQ(floor.triangles[0], (estep::contact::TriangleIndices{{0, 1, 2}}));
   EXPECT_EQ(floor.triangles[1], (estep::contact::TriangleIndices{{0, 2, 3}}));
+}
+
+TEST(StaticSurface, ReadsBinaryStl)
+{
+  // The floor as a binary STL whose header begins with "solid", as many
+  // exporters write it: the same points and triangles as the ASCII file.
+  std::string bytes = "solid exported by a CAD program";
+  bytes.resize(80, ' ');
+  const auto append_uint = [&bytes](const std::uint32_t n, const int size) {
+    for (int b = 0; b < size; ++b)
+      bytes.push_back(static_cast<char>((n >> (8 * b)) & 0xff));
+  };
+  const auto append_float = [&](const float x) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &x, sizeof(bits));
+    append_uint(bits, 4);
+  };
+  const auto triangles = floor_triangles(2.);
+  append_uint(triangles.size(), 4);
+  for (const auto &t : triangles)
+    {
+      for (const float n : {0.f, 0.f, 1.f})
+        append_float(n);
+      for (const auto &x : t)
+        for (const double c : x)
+          append_float(static_cast<float>(c));
+      append_uint(0xabcd, 2); // attributes, not read
+    }
+  const StaticSurface floor = estep::read_static_surface(
+    write_file("static_surface_binary_floor.stl", bytes));
+  const StaticSurface ascii = estep::read_static_surface(
+    write_file("static_surface_floor.stl", stl_text(triangles)));
+  EXPECT_EQ(floor.points, ascii.points);
+  EXPECT_EQ(floor.triangles, ascii.triangles);
+
+  // Cut short anywhere, it is refused, not read in part.
+  for (std::size_t length = 0; length < bytes.size(); ++length)
+    EXPECT_THROW(estep::read_static_surface(write_file(
+                   "static_surface_binary_cut.stl", bytes.substr(0, length))),
+                 std::runtime_error)
+      << "a binary file cut after " << length << " of " << bytes.size()
+      << " bytes was read";
 }
 
 TEST(StaticSurface, ReadsGmsh)

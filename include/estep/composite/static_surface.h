@@ -39,13 +39,17 @@ namespace estep
   };
 
   /**
-   * The triangles of an ASCII STL file ("solid ... facet normal ... outer
-   * loop vertex x y z ... endloop endfacet ... endsolid"; the facet normals
-   * are not used). Vertices with identical coordinates (exactly) become one
-   * point, numbered in the order of their first appearance. Throws
-   * std::runtime_error naming the file if it cannot be read, is not ASCII
-   * STL, has a loop of other than three vertices, or has no facet (see
-   * StaticSurface::check()).
+   * The triangles of an STL file, ASCII ("solid ... facet normal ... outer
+   * loop vertex x y z ... endloop endfacet ... endsolid") or binary (an
+   * 80-byte header, the number of triangles, and 50 bytes for each: normal,
+   * three vertices in single precision, attributes). A file is read as
+   * binary if its size is 84 bytes plus 50 for each triangle its bytes 80 to
+   * 83 count, whatever its header begins with (exporters often write "solid"
+   * there); otherwise as ASCII. Facet normals and attributes are not used.
+   * Vertices with identical coordinates (exactly) become one point, numbered
+   * in the order of their first appearance. Throws std::runtime_error naming
+   * the file if it cannot be read, is neither, has a loop of other than
+   * three vertices, or has no facet (see StaticSurface::check()).
    */
   StaticSurface
   read_stl_surface(const std::string &filename);
