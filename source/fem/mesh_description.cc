@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace estep
@@ -31,9 +32,62 @@ namespace estep
              dealii::Utilities::to_string(p[2]);
     }
 
+    /**
+     * The hexahedra a subdividing generator (subdivided_hyper_cube,
+     * subdivided_hyper_rectangle) will make, counted from its first argument,
+     * the subdivisions, before it runs: deal.II reads them as unsigned
+     * integers (-1 becomes 4294967295) and allocates for them before any
+     * check of its own. Throws if they are not positive integers; none for
+     * other generators.
+     */
+    std::optional<double>
+    subdivided_hexahedra(const MeshDescription &d)
+    {
+      if (d.generator != "subdivided_hyper_cube" &&
+          d.generator != "subdivided_hyper_rectangle")
+        return std::nullopt;
+      const std::string subdivisions =
+        dealii::Utilities::trim(d.arguments.substr(
+          0, std::min(d.arguments.find(':'), d.arguments.size())));
+      double       hexahedra = 1.;
+      unsigned int n_numbers = 0;
+      for (const std::string &word :
+           dealii::Utilities::split_string_list(subdivisions, ','))
+        {
+          const bool digits =
+            !word.empty() &&
+            word.find_first_not_of("0123456789") == std::string::npos;
+          if (!digits || std::stod(word) < 1.)
+            throw std::runtime_error("Generator arguments: the subdivisions <" +
+                                     subdivisions + "> of " + d.generator +
+                                     " must be positive integers.");
+          hexahedra *= std::stod(word);
+          ++n_numbers;
+        }
+      return n_numbers == 1 ? std::pow(hexahedra, 3.) : hexahedra;
+    }
+
+    void
+    throw_if_too_many_cells(const MeshDescription &d, const double hexahedra)
+    {
+      const double cells =
+        24. * hexahedra * std::pow(8., static_cast<double>(d.n_refinements));
+      if (cells <= max_generated_mesh_cells)
+        return;
+      std::ostringstream message;
+      message << "Mesh: the deal.II generator '" << d.generator << "' with "
+              << d.n_refinements << " refinements would make about " << cells
+              << " tetrahedra (24 per hexahedron), more than "
+              << max_generated_mesh_cells
+              << "; take fewer refinements or a coarser mesh.";
+      AssertThrow(false, dealii::ExcMessage(message.str()));
+    }
+
     void
     make_hexahedral(const MeshDescription &d, dealii::Triangulation<3, 3> &hex)
     {
+      if (const auto hexahedra = subdivided_hexahedra(d))
+        throw_if_too_many_cells(d, *hexahedra);
       try
         {
           dealii::GridGenerator::generate_from_name_and_arguments(hex,
@@ -48,18 +102,7 @@ namespace estep
                                          d.arguments +
                                          "' failed: " + one_line_message(e)));
         }
-      const double cells = 24. * hex.n_active_cells() *
-                           std::pow(8., static_cast<double>(d.n_refinements));
-      if (!(cells <= max_generated_mesh_cells))
-        {
-          std::ostringstream message;
-          message << "Mesh: the deal.II generator '" << d.generator << "' with "
-                  << d.n_refinements << " refinements would make about "
-                  << cells << " tetrahedra (24 per hexahedron), more than "
-                  << max_generated_mesh_cells
-                  << "; take fewer refinements or a coarser mesh.";
-          AssertThrow(false, dealii::ExcMessage(message.str()));
-        }
+      throw_if_too_many_cells(d, hex.n_active_cells());
       hex.refine_global(d.n_refinements);
     }
   } // namespace

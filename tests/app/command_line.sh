@@ -230,6 +230,11 @@ cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mes
 expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
 expect 1 "Elastic body/Initial velocity/Function expression: <sqrt\(-1\); 0; 0> is -?nan at the point \([-0-9.e+, ]+\) \(component 0\)\.$" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 expect 1 "Elastic body/Mesh: the deal.II generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
+# Subdivisions that deal.II would read as 4294967295, or too many, are refused before it allocates
+# (-1 took 14 GB in a minute; 4294967295 crashed it).
+gen=(-s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=subdivided_hyper_rectangle")
+expect 1 "Elastic body/Mesh: Generator arguments: the subdivisions <-1, 2, 2> of subdivided_hyper_rectangle must be positive integers\.$" -- "${cube[@]}" "${gen[@]}" -s "Elastic body/Mesh/Generator arguments=-1, 2, 2 : 0, 0, 0 : 1, 1, 1 : false"
+expect 1 "Elastic body/Mesh: the deal.II generator 'subdivided_hyper_rectangle' with 0 refinements would make about 2.4e\+16 tetrahedra" -- "${cube[@]}" "${gen[@]}" -s "Elastic body/Mesh/Generator arguments=100000, 100000, 100000 : 0, 0, 0 : 1, 1, 1 : false"
 expect 1 "Function expression: <1; 2> cannot be evaluated: The number of components \(3\) is not equal to the number of expressions \(2\)" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=1; 2"
 # Warnings about the input, which let the run go on: a tracked point far from its body, more
 # threads than cores; and the system named as Problem/System names it.
