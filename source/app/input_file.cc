@@ -11,7 +11,9 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -128,20 +130,32 @@ namespace estep
                 dealii::Utilities::trim(line.substr(space))};
     }
 
+    /** Where scan_prm_file() is in a .prm file and its includes. */
+    struct PrmScan
+    {
+      /** The files being read (canonical paths), the outermost first. */
+      std::vector<std::string> chain;
+      /** The subsection path at the current line. */
+      std::vector<std::string> sections;
+      /** The line that first set each entry (by full path) in each file. */
+      std::map<std::pair<std::string, std::string>, unsigned int> set_on_line;
+    };
+
     /**
      * Follow a .prm file as deal.II will read it, for what deal.II cannot
      * survive or report clearly: include lines (no cycle, bounded depth, the
-     * file exists) and entries of an earlier version of the input that have
-     * moved (renamed_entry_message()). @p sections is the subsection path
-     * at the start of the file.
+     * file exists), entries of an earlier version of the input that have
+     * moved (renamed_entry_message()), and an entry set twice in one file,
+     * where deal.II would silently keep the later value (a file may set again
+     * what a file it includes sets: that is how one file amends another).
      */
     void
-    scan_prm_file(const std::string        &filename,
-                  std::vector<std::string> &chain,
-                  std::vector<std::string> &sections)
+    scan_prm_file(const std::string &filename, PrmScan &scan)
     {
-      std::error_code   error;
-      const std::string canonical =
+      std::vector<std::string> &chain    = scan.chain;
+      std::vector<std::string> &sections = scan.sections;
+      std::error_code           error;
+      const std::string         canonical =
         std::filesystem::weakly_canonical(filename, error).string();
       std::istringstream lines(read_text(filename));
       std::string        line;
@@ -166,6 +180,14 @@ namespace estep
               const std::string moved = renamed_entry_message(path);
               if (!moved.empty())
                 throw std::runtime_error(where + moved);
+              const auto [first, is_first] =
+                scan.set_on_line.emplace(std::make_pair(canonical, path),
+                                         number);
+              if (!is_first)
+                throw std::runtime_error(
+                  where + path + " is set again (first on line " +
+                  std::to_string(first->second) +
+                  "); deal.II would keep the later value unseen. Set it once.");
             }
           else if (keyword == "include")
             {
@@ -185,7 +207,7 @@ namespace estep
                                          target +
                                          "> does not exist or is not a file.");
               chain.push_back(target_canonical);
-              scan_prm_file(target, chain, sections);
+              scan_prm_file(target, scan);
               chain.pop_back();
             }
         }
@@ -275,10 +297,15 @@ namespace estep
                      const std::string                 &filename,
                      const bool                         skip_undeclared)
     {
-      const std::string where = "File <" + filename + ">: ";
+      const std::string     where = "File <" + filename + ">: ";
+      std::set<std::string> names;
       for (const auto &[name, child] : node)
         {
           const std::string path = entry_path(sections, name);
+          if (!name.empty() && !names.insert(name).second)
+            throw std::runtime_error(where + path +
+                                     " is given twice in one object; give "
+                                     "it once.");
           if (name.empty())
             throw std::runtime_error(
               where + (sections.empty() ? std::string("the file") : path) +
@@ -366,6 +393,11 @@ namespace estep
             "Line <" + std::to_string(error.line()) + "> of file <" + filename +
             ">: not valid JSON: " + error.message() + ".");
         }
+      if (tree.empty())
+        throw std::runtime_error(
+          "The input file <" + filename +
+          "> sets no entry: give at least one (estep --print-parameters "
+          "prints them all with their defaults).");
       std::vector<std::string> sections;
       read_json_object(prm, tree, sections, filename, skip_undeclared);
     }
@@ -389,11 +421,26 @@ namespace estep
         std::string        line;
         for (unsigned int number = 1; std::getline(lines, line); ++number)
           check_utf8(line, number, filename);
-        prm.parse_input(filename, "", skip_undeclared);
+        try
+          {
+            prm.parse_input(filename, "", skip_undeclared);
+          }
+        catch (const boost::property_tree::file_parser_error &error)
+          {
+            throw std::runtime_error(
+              "Line <" + std::to_string(error.line()) + "> of file <" +
+              filename + ">: not valid XML: " + error.message() + ".");
+          }
         return;
       }
-    std::vector<std::string> chain, sections;
-    scan_prm_file(filename, chain, sections);
+    PrmScan scan;
+    scan_prm_file(filename, scan);
+    if (scan.set_on_line.empty())
+      throw std::runtime_error(
+        "The input file <" + filename +
+        "> sets no entry (it is empty, or only comments and subsections): "
+        "give at least one (estep --print-parameters prints them all with "
+        "their defaults).");
     std::istringstream text(read_text(filename));
     try
       {

@@ -180,6 +180,22 @@ printf '{ "Time integration": { "Energy step": "1e-3" } }\n' > renamed.json
 expect 1 "File <renamed.json>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.json
 printf '{ "Time integration": {\n  "End time": 1,\n}\n' > malformed.json
 expect 1 "Line <3> of file <malformed.json>: not valid JSON: expected key string" -- malformed.json
+# An entry set twice in one file (deal.II would keep the later value unseen), in .prm and
+# .json; a file may set again what a file it includes sets.
+printf 'set Output directory = run\nsubsection Time integration\n  set End time = 0.5\nend\nsubsection Time integration\n  set End time = 2\nend\n' > twice.prm
+expect 1 "Line <6> of file <twice.prm>: Time integration/End time is set again \(first on line 3\)" -- twice.prm
+printf 'include twice_base.prm\nsubsection Time integration\n  set End time = 0.5\nend\n' > amends.prm
+printf 'set Output directory = amended\nsubsection Time integration\n  set End time = 2\nend\n' > twice_base.prm
+expect 0 "completed at t = 0.5" -- amends.prm
+printf '{ "Output directory": "a", "Output directory": "b" }\n' > twice.json
+expect 1 "File <twice.json>: Output directory is given twice in one object" -- twice.json
+# A file that sets nothing (emptied by mistake) does not run the default problem.
+printf '# nothing yet\nsubsection Time integration\nend\n' > nothing.prm
+expect 1 "The input file <nothing.prm> sets no entry" -- nothing.prm
+printf '{}\n' > nothing.json
+expect 1 "The input file <nothing.json> sets no entry" -- nothing.json
+printf '<?xml version="1.0"?>\n<ParameterHandler><Output_20directory>x</Output_20dir' > malformed.xml
+expect 1 "Line <2> of file <malformed.xml>: not valid XML: expected >" -- malformed.xml
 # Entries of the earlier input layout: the message names where they went.
 printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = 1e-3\nend\n' > renamed.prm
 expect 1 "Line <3> of file <renamed.prm>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.prm

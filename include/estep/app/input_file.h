@@ -19,7 +19,10 @@ namespace estep
    * nest deeper than 32 files; a JSON file may not nest deeper than 64
    * levels; the text of a .prm file (outside comments) and of a .xml file
    * must be UTF-8, as the parameters.json it leads to must be; an entry of an
-   * earlier version of the input that has moved is named with its new place.
+   * earlier version of the input that has moved is named with its new place;
+   * an entry may be set only once in a file (a file may set again what the
+   * files it includes set), and a .prm or .json file must set at least one
+   * entry.
    * A JSON file is read here rather than by deal.II, so that an undeclared
    * entry or subsection, or a value that does not match its pattern, is named
    * by its full path. Each violation is a std::runtime_error naming the file,
