@@ -80,28 +80,33 @@ namespace estep
       std::map<std::array<double, 3>, unsigned int> point_of;
     };
 
+    /** The little-endian unsigned 32-bit integer at @p bytes. */
+    std::uint32_t
+    little_endian_uint32(const unsigned char *bytes)
+    {
+      return bytes[0] | (bytes[1] << 8) | (bytes[2] << 16) |
+             (static_cast<std::uint32_t>(bytes[3]) << 24);
+    }
+
     /** The number of triangles of a binary STL file of @p size bytes whose
      * bytes 80 to 83 are @p count_bytes, if the size is that of so many
      * (84 + 50 per triangle); none otherwise. */
     std::optional<std::uint32_t>
-    binary_stl_triangles(const unsigned char  count_bytes[4],
+    binary_stl_triangles(const unsigned char *count_bytes,
                          const std::uintmax_t size)
     {
-      const std::uint32_t n =
-        count_bytes[0] | (count_bytes[1] << 8) | (count_bytes[2] << 16) |
-        (static_cast<std::uint32_t>(count_bytes[3]) << 24);
+      const std::uint32_t n = little_endian_uint32(count_bytes);
       if (size != 84 + 50 * static_cast<std::uintmax_t>(n))
         return std::nullopt;
       return n;
     }
 
-    /** A little-endian IEEE single of a binary STL file. */
+    /** The little-endian IEEE single at @p bytes. */
     double
     read_float(const unsigned char *bytes)
     {
-      const std::uint32_t bits = bytes[0] | (bytes[1] << 8) | (bytes[2] << 16) |
-                                 (static_cast<std::uint32_t>(bytes[3]) << 24);
-      float x;
+      const std::uint32_t bits = little_endian_uint32(bytes);
+      float               x;
       std::memcpy(&x, &bits, sizeof(x));
       return x;
     }

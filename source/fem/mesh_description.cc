@@ -15,6 +15,7 @@
 #include <estep/fem/meshes.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -57,11 +58,13 @@ namespace estep
           const bool digits =
             !word.empty() &&
             word.find_first_not_of("0123456789") == std::string::npos;
-          if (!digits || std::stod(word) < 1.)
+          // (strtod: a number beyond double range is infinite, no throw.)
+          const double n = digits ? std::strtod(word.c_str(), nullptr) : 0.;
+          if (!(n >= 1.))
             throw std::runtime_error("Generator arguments: the subdivisions <" +
                                      subdivisions + "> of " + d.generator +
                                      " must be positive integers.");
-          hexahedra *= std::stod(word);
+          hexahedra *= n;
           ++n_numbers;
         }
       return n_numbers == 1 ? std::pow(hexahedra, 3.) : hexahedra;
