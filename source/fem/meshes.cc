@@ -57,6 +57,9 @@ namespace estep
                                      face_centre; // face index -> new vertex
     std::vector<dealii::CellData<3>> cells;
     cells.reserve(24 * hex_tria.n_cells(0));
+    // The four triangles of a boundary face take its boundary id (0, the
+    // default, need not be listed).
+    dealii::SubCellData boundary;
 
     // Vertex pairs forming the four edges of a quadrilateral face (deal.II's
     // lexicographic face vertex numbering: the cycle is 0-1-3-2).
@@ -106,10 +109,19 @@ namespace estep
                   std::swap(tet.vertices[2], tet.vertices[3]);
                 tet.material_id = cell->material_id();
                 cells.push_back(tet);
+                if (face->at_boundary() && face->boundary_id() != 0)
+                  {
+                    dealii::CellData<2> triangle(3);
+                    triangle.vertices    = {it->second,
+                                            face->vertex_index(edge[0]),
+                                            face->vertex_index(edge[1])};
+                    triangle.boundary_id = face->boundary_id();
+                    boundary.boundary_quads.push_back(triangle);
+                  }
               }
           }
       }
-    tet_tria.create_triangulation(vertices, cells, dealii::SubCellData());
+    tet_tria.create_triangulation(vertices, cells, boundary);
   }
 
   void

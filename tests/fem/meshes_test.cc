@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,39 @@ namespace
       estep::make_mesh(d, tria);
       EXPECT_EQ(tria.n_active_cells(), 7u * 24u);
     }
+  }
+
+  TEST(Meshes, Deal24KeepsBoundaryIds)
+  {
+    // A colorized box: ids 0 to 5 on the faces x = 0, x = 2, y = 0, y = 1,
+    // z = 0, z = 1; every boundary triangle of the split mesh has the id of
+    // the face it lies in (they were all 0).
+    estep::MeshDescription d;
+    d.type      = "deal.II 24";
+    d.generator = "subdivided_hyper_rectangle";
+    d.arguments = "2, 1, 1 : 0, 0, 0 : 2, 1, 1 : true";
+    dealii::Triangulation<3> tria;
+    estep::make_mesh(d, tria);
+    const double                         upper[3] = {2., 1., 1.};
+    std::map<unsigned int, unsigned int> triangles_with_id;
+    for (const auto &cell : tria.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          {
+            const dealii::Point<3> c        = face->center();
+            unsigned int           expected = 99;
+            for (unsigned int axis = 0; axis < 3; ++axis)
+              if (std::abs(c[axis]) < 1e-12)
+                expected = 2 * axis;
+              else if (std::abs(c[axis] - upper[axis]) < 1e-12)
+                expected = 2 * axis + 1;
+            EXPECT_EQ(face->boundary_id(), expected) << "face at " << c;
+            ++triangles_with_id[face->boundary_id()];
+          }
+    // 4 triangles per quadrilateral: 1 on each end, 2 on each long side.
+    const std::map<unsigned int, unsigned int> expected_counts = {
+      {0, 4}, {1, 4}, {2, 8}, {3, 8}, {4, 8}, {5, 8}};
+    EXPECT_EQ(triangles_with_id, expected_counts);
   }
 
   /** Each cell's vertices (in its own order) and material id, or each

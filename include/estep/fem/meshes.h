@@ -37,7 +37,8 @@ namespace estep
    * face) and one at the centre of each hexahedron (mean of its eight
    * vertices); each tetrahedron is (hexahedron centre, face centre, the two
    * vertices of one edge of that face), ordered to have positive volume.
-   * Material ids are inherited; boundary ids and manifolds are not. @p tet_tria
+   * Material ids are inherited, and so are boundary ids (the four triangles
+   * of a boundary face take its id); manifolds are not. @p tet_tria
    * must be empty. This differs from deal.II's
    * GridGenerator::convert_hypercube_to_simplex_mesh (which gives 2,457
    * vertices on the 8^3 cube).
