@@ -505,6 +505,16 @@ namespace estep
                 "unseen; take a smaller penalty parameter or energy step.";
         found.push_back(text.str());
       }
+    // At rest from the start: between levels the terraced potential exerts
+    // no force, and a flight at zero velocity reaches no level.
+    if (n_climbs + n_descents + n_reflections + n_constraint_events == 0 &&
+        v.linfty_norm() == 0.)
+      found.push_back(
+        "Energy stepping: the system started at rest (kinetic energy 0) and "
+        "stayed exactly where it was, whatever the forces on it (gravity, a "
+        "pre-stress): between levels the terraced potential exerts no force, "
+        "and a flight at zero velocity reaches no level. If it should move, "
+        "give it an initial velocity, however small.");
     // Mostly reflections: the motion keeps bouncing off the level above
     // instead of climbing and descending through the terraces, and where the
     // levels lie decides it (doc/spinning_cube.md).

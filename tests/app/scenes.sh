@@ -267,6 +267,12 @@ expect_error "Scene: obstacle inner.stl lies inside Body 1 at t = 0" "$files/sce
 # to take ever shorter steps at the first contact and never end).
 sed 's/vertex \([-0-9]*\) \([-0-9]*\) 0/vertex \1e10 \2e10 0/' floor.stl > wide_floor.stl
 expect_error "Contact/Collision tolerance = 1e-06: obstacle wide_floor.stl has coordinates as large as 1e\+10, where the collision detection's round-off exceeds half this tolerance" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=wide_floor.stl"
+# Released at rest under gravity, energy-stepping leaves the ball exactly where it is: a
+# warning says so and why (it completed without a word).
+"$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=at_rest" -s "Time integration/End time=0.05" -s "Scene/Body 1/Initial velocity/Translational velocity=0, 0, 0" > at_rest.log 2>&1 || fail "the ball at rest failed: $(cat at_rest.log)"
+grep -q "warning: Energy stepping: the system started at rest (kinetic energy 0) and stayed exactly where it was" at_rest.log || fail "no warning for a scene at rest: $(cat at_rest.log)"
+grep -q "started at rest" at_rest/summary.json || fail "the warning for a scene at rest is not in summary.json"
+grep -q "started at rest" drop.log && fail "the moving ball drop warns that it started at rest"
 # An entry that the body's velocity type does not read: a warning naming the body.
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=unread" -s "Time integration/End time=0.001" -s "Scene/Body 1/Initial velocity/Variable names=u,v,w" > unread.log 2>&1 || fail "a scene with an unread entry failed: $(cat unread.log)"
 grep -q "warning: Scene/Body 1/Initial velocity/Variable names: Scene/Body 1/Initial velocity/Type = rigid motion does not read it (function does); it is ignored." unread.log || fail "no warning for an unread entry of a scene body: $(cat unread.log)"
