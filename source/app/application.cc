@@ -17,6 +17,7 @@
 #include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_bodies.h>
 #include <estep/io/checkpoint.h>
+#include <estep/io/output_directory_lock.h>
 #include <estep/io/postprocessor.h>
 #include <estep/io/run_summary.h>
 #include <estep/materials/material_registry.h>
@@ -772,6 +773,33 @@ namespace estep
       const std::filesystem::path directory(parameters.output_directory);
       const std::string   summary_file  = (directory / "summary.json").string();
       const std::uint64_t initial_state = initial_state_checksum(problem);
+      // The output directory is this run's from here on: one that another
+      // run uses is refused before its checkpoint is read or any of its
+      // files is touched.
+      std::optional<OutputDirectoryLock> output_lock;
+      std::string                        lock_error;
+      if (writes_output)
+        try
+          {
+            std::filesystem::create_directories(directory);
+            output_lock.emplace(directory);
+          }
+        catch (const std::filesystem::filesystem_error &error)
+          {
+            lock_error = "cannot prepare the output directory <" +
+                         directory.string() + ">: <" + error.path1().string() +
+                         ">: " + error.code().message();
+          }
+        catch (const std::runtime_error &error)
+          {
+            lock_error = error.what();
+          }
+      if (largest_over_ranks(!lock_error.empty()) != 0)
+        {
+          if (!lock_error.empty())
+            std::cerr << ("estep: error: " + lock_error + "\n");
+          return exit_failed;
+        }
       std::optional<Checkpoint>    checkpoint;
       std::optional<TimeLoopState> resumed_state;
       if (command.resume)

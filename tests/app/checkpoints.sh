@@ -274,5 +274,30 @@ output_refused_on_resume "a snapshot deleted" snap \
   "^estep: error: Cannot resume the field output: its snapshot <snap/fields/solution-00002.vtu>" \
   "${snap[@]}" --set "Time integration/End time=6"
 
+# Two runs into one output directory (a job started again while the first still runs): the
+# second is refused, fresh or resumed, and touches nothing of the first's (they mixed their
+# history rows).
+busy=("$files/spinning_cube.prm" --set "Output directory=busy" --set "Postprocessors/List=history")
+"$ESTEP" "${busy[@]}" > busy.txt 2>&1 &
+pid=$!
+while kill -0 $pid 2> /dev/null && ! grep -q '"status": "running"' busy/summary.json 2> /dev/null; do
+  sleep 0.01
+done
+cp busy/summary.json busy_summary.json
+for resume in "" --resume; do
+  "$ESTEP" "${busy[@]}" --set "Time integration/End time=1" $resume > out.txt 2> err.txt
+  rc=$?
+  [[ $rc == 4 ]] || fail "a second run ${resume:-(fresh)} into a busy output directory: exit code $rc"
+  grep -q "^estep: error: the output directory <busy> is in use by another estep run" err.txt ||
+    fail "a second run ${resume:-(fresh)} into a busy output directory: $(cat err.txt)"
+done
+cmp -s busy/summary.json busy_summary.json || fail "a refused second run changed the first's summary.json"
+kill -TERM $pid
+wait $pid
+[[ $? == 143 ]] || fail "the first run into the busy directory: $(tail -2 busy.txt)"
+grep -q '"status": "interrupted"' busy/summary.json || fail "the busy run's summary: $(grep status busy/summary.json)"
+# Its lock ends with it (here by SIGTERM; the system releases it after SIGKILL too).
+"$ESTEP" "${busy[@]}" --set "Time integration/End time=1" > /dev/null 2>&1 || fail "a run into the directory after the first ended"
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
