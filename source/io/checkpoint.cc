@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,47 @@ namespace estep
             }
         }
       return entries;
+    }
+
+    /**
+     * Whether two entries "Path = value" of fixed_entries() name the same
+     * entry with the same value: the same text, or the same numbers where
+     * the texts differ (0.01 and 0.0100, "0,0,1" and "0, 0, 1"), word for
+     * word between the separators of lists.
+     */
+    bool
+    same_entry(const std::string &a, const std::string &b)
+    {
+      if (a == b)
+        return true;
+      const auto words = [](const std::string &entry) {
+        const auto               equals = entry.find(" =");
+        std::vector<std::string> result = {entry.substr(0, equals)};
+        std::string              word;
+        for (const char c : entry.substr(equals + 2) + " ")
+          if (c == ',' || c == ';' || c == ':' || c == ' ' || c == '\t')
+            {
+              if (!word.empty())
+                result.push_back(word);
+              word.clear();
+            }
+          else
+            word += c;
+        return result;
+      };
+      const std::vector<std::string> x = words(a), y = words(b);
+      if (x.size() != y.size() || x[0] != y[0])
+        return false;
+      for (std::size_t i = 1; i < x.size(); ++i)
+        if (x[i] != y[i])
+          {
+            char        *x_end, *y_end;
+            const double x_value = std::strtod(x[i].c_str(), &x_end),
+                         y_value = std::strtod(y[i].c_str(), &y_end);
+            if (*x_end != '\0' || *y_end != '\0' || !(x_value == y_value))
+              return false;
+          }
+      return true;
     }
 
     /** The lines of @p text. */
@@ -234,7 +276,7 @@ namespace estep
     const std::vector<std::string> then = lines_of(parameters),
                                    now  = fixed_entries(current);
     for (std::size_t i = 0; i < std::max(then.size(), now.size()); ++i)
-      if (i >= then.size() || i >= now.size() || then[i] != now[i])
+      if (i >= then.size() || i >= now.size() || !same_entry(then[i], now[i]))
         {
           const std::string &differing = i < now.size() ? now[i] : then[i];
           throw std::runtime_error(

@@ -204,6 +204,10 @@ rc=$?
 [[ $rc == 1 ]] || fail "changed parameters: exit code $rc"
 grep -q "Energy stepping/Energy step" err.txt || fail "changed parameters: the entry is not named: $(cat err.txt)"
 [[ $(wc -l < err.txt) == 1 ]] || fail "changed parameters: not one line: $(cat err.txt)"
+# The same values written otherwise are the same parameters (they were compared as text).
+"$ESTEP" "${cube[@]}" --set "Time integration/End time=2.5" --set "Time integration/Energy stepping/Energy step=0.000010" \
+  --set "Elastic body/Initial velocity/Angular velocity=0,0,1.0" --resume > out.txt 2>&1 ||
+  fail "the same parameters written otherwise: $(tail -1 out.txt)"
 printf 'x' | dd of=run/checkpoint.bin bs=1 seek=200 conv=notrunc 2> /dev/null
 "$ESTEP" "${cube[@]}" --resume > out.txt 2> err.txt
 rc=$?
