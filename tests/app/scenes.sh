@@ -228,7 +228,8 @@ expect_error() {
 }
 cradle=("$files/scene_newtons_cradle.prm" -s "Output directory=bad" -s "Time integration/End time=0.01")
 expect_error "Scene: Body 1 and Body 2 overlap at t = 0" "${cradle[@]}" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
-expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
+expect_error "Scene/Obstacles: [0-9]+ boundary vertices of the bodies lie inside an obstacle at t = 0, among them vertices of Body 1 behind half-space 1 of Scene/Obstacles/Half-spaces" "$files/scene_ball_drop.prm" -s "Output directory=bad" -s "Scene/Body 1/Placement/Shift=0, 0, 0.05"
+expect_error "lie inside an obstacle at t = 0, among them vertices of Body 2 behind half-space 2 of Scene/Obstacles/Half-spaces" "${cradle[@]}" -s "Scene/Obstacles/Half-spaces=0, 0, -10, 0, 0, 1; 2.5, 0, 0, -1, 0, 0"
 # An initial displacement that inverts cells: refused before any output, by every integrator.
 for method in "energy stepping" "explicit newmark" "ida bdf"; do
   expect_error "The initial configuration of the scene is inadmissible: its potential energy is not finite" "$files/scene_cantilever.prm" -s "Output directory=inverted" -s "Scene/Body 1/Initial displacement/Function expression=-2*x; 0; 0" -s "Time integration/Method=$method"
