@@ -363,6 +363,7 @@ namespace estep
         time = in.get<double>();
         file = in.get_string();
       }
+    std::error_code failure;
     // The snapshots the series lists must still be there: a series that
     // goes on would list missing files. (Every process looks, and so
     // throws alike.)
@@ -385,6 +386,22 @@ namespace estep
                         "series is in ") +
             (hdf5_series ? "hdf5" : "vtu") + "; resume with that format.");
       }
+    // Snapshots written after the checkpoint by the run that stopped
+    // (killed before its next checkpoint) are not in the series: the first
+    // process removes them, before any process writes the next one.
+    if (self.rank == 0)
+      for (const auto &entry : std::filesystem::directory_iterator(
+             self.directory / "fields",
+             std::filesystem::directory_options::skip_permission_denied,
+             failure))
+        {
+          const std::string name = entry.path().filename().string();
+          unsigned int      index;
+          if (std::sscanf(name.c_str(), "solution-%5u", &index) == 1 &&
+              name.size() > 14 && index >= self.series.size())
+            std::filesystem::remove(entry.path(), failure);
+        }
+    largest_over_ranks(0);
     start();
     if (!self.series.empty() && self.rank == 0)
       self.write_series();

@@ -278,6 +278,16 @@ output_refused_on_resume "a snapshot deleted" snap \
   "^estep: error: Cannot resume the field output: its snapshot <snap/fields/solution-00002.vtu>" \
   "${snap[@]}" --set "Time integration/End time=6"
 
+# Snapshots written after the last checkpoint by a run killed before its next one are not in
+# the series: the resume removes them (they stayed on disk, unlisted).
+rm -rf snap
+"$ESTEP" "${snap[@]}" --set "Time integration/End time=4" > /dev/null 2>&1 || fail "the snapshot run"
+touch snap/fields/solution-00005.vtu snap/fields/solution-00007-p1.vtu
+"$ESTEP" "${snap[@]}" --set "Time integration/End time=4" --resume > out.txt 2>&1 || fail "resuming the snapshot run: $(tail -1 out.txt)"
+[[ ! -e snap/fields/solution-00005.vtu && ! -e snap/fields/solution-00007-p1.vtu ]] ||
+  fail "snapshots beyond the checkpoint's series were left: $(ls snap/fields)"
+[[ -e snap/fields/solution-00004.vtu ]] || fail "the resume removed a snapshot of the series: $(ls snap/fields)"
+
 # Two runs into one output directory (a job started again while the first still runs): the
 # second is refused, fresh or resumed, and touches nothing of the first's (they mixed their
 # history rows).
