@@ -794,12 +794,16 @@ namespace estep
           {
             lock_error = error.what();
           }
-      if (largest_over_ranks(!lock_error.empty()) != 0)
-        {
-          if (!lock_error.empty())
-            std::cerr << ("estep: error: " + lock_error + "\n");
-          return exit_failed;
-        }
+      // Whether a process met an error (collective): each prints its own.
+      const auto failed_on_a_rank = [](const std::string &error) {
+        if (largest_over_ranks(!error.empty()) == 0)
+          return false;
+        if (!error.empty())
+          std::cerr << ("estep: error: " + error + "\n");
+        return true;
+      };
+      if (failed_on_a_rank(lock_error))
+        return exit_failed;
       std::optional<Checkpoint>    checkpoint;
       std::optional<TimeLoopState> resumed_state;
       if (command.resume)
@@ -846,12 +850,8 @@ namespace estep
           {
             start_error = error.what();
           }
-      if (largest_over_ranks(!start_error.empty()) != 0)
-        {
-          if (!start_error.empty())
-            std::cerr << ("estep: error: " + start_error + "\n");
-          return exit_failed;
-        }
+      if (failed_on_a_rank(start_error))
+        return exit_failed;
       const InterruptionRequests interruption_requests;
       std::string                preparation_error;
       if (writes_output)
