@@ -542,7 +542,7 @@ namespace estep
      * output directory touched, first with a summary saying "running" (so
      * that no reader takes an earlier run's summary for this one), then the
      * parameters as read. A resumed run keeps the earlier outputs it
-     * continues.
+     * continues. The directory exists: the run made it to lock it.
      */
     void
     prepare_output_directory(const std::filesystem::path    &directory,
@@ -550,7 +550,6 @@ namespace estep
                              const RunRecord                &run,
                              const bool                      resumed)
     {
-      std::filesystem::create_directories(directory);
       write_file_atomically((directory / "summary.json").string(),
                             status_summary(run, "running", "").to_string() +
                               "\n");

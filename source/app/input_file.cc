@@ -130,6 +130,17 @@ namespace estep
                 dealii::Utilities::trim(line.substr(space))};
     }
 
+    /** The error of an input file that sets no entry (emptied by mistake:
+     * it would run the default problem). */
+    std::runtime_error
+    sets_no_entry(const std::string &filename)
+    {
+      return std::runtime_error(
+        "The input file <" + filename +
+        "> sets no entry: give at least one (estep --print-parameters "
+        "prints them all with their defaults).");
+    }
+
     /** Where scan_prm_file() is in a .prm file and its includes. */
     struct PrmScan
     {
@@ -152,10 +163,8 @@ namespace estep
     void
     scan_prm_file(const std::string &filename, PrmScan &scan)
     {
-      std::vector<std::string> &chain    = scan.chain;
-      std::vector<std::string> &sections = scan.sections;
-      std::error_code           error;
-      const std::string         canonical =
+      std::error_code   error;
+      const std::string canonical =
         std::filesystem::weakly_canonical(filename, error).string();
       std::istringstream lines(read_text(filename));
       std::string        line;
@@ -168,13 +177,13 @@ namespace estep
           const std::string where    = "Line <" + std::to_string(number) +
                                     "> of file <" + filename + ">: ";
           if (keyword == "subsection")
-            sections.push_back(rest);
-          else if (keyword == "end" && !sections.empty())
-            sections.pop_back();
+            scan.sections.push_back(rest);
+          else if (keyword == "end" && !scan.sections.empty())
+            scan.sections.pop_back();
           else if (keyword == "set")
             {
               std::string path;
-              for (const std::string &section : sections)
+              for (const std::string &section : scan.sections)
                 path += section + "/";
               path += dealii::Utilities::trim(rest.substr(0, rest.find('=')));
               const std::string moved = renamed_entry_message(path);
@@ -194,11 +203,11 @@ namespace estep
               const std::string &target = rest;
               const std::string  target_canonical =
                 std::filesystem::weakly_canonical(target, error).string();
-              for (const std::string &open : chain)
+              for (const std::string &open : scan.chain)
                 if (open == target_canonical || target_canonical == canonical)
                   throw std::runtime_error(where + "including <" + target +
                                            "> forms a cycle of includes.");
-              if (chain.size() >= max_include_depth)
+              if (scan.chain.size() >= max_include_depth)
                 throw std::runtime_error(where + "includes nest deeper than " +
                                          std::to_string(max_include_depth) +
                                          " files.");
@@ -206,9 +215,9 @@ namespace estep
                 throw std::runtime_error(where + "the included file <" +
                                          target +
                                          "> does not exist or is not a file.");
-              chain.push_back(target_canonical);
+              scan.chain.push_back(target_canonical);
               scan_prm_file(target, scan);
-              chain.pop_back();
+              scan.chain.pop_back();
             }
         }
     }
@@ -394,10 +403,7 @@ namespace estep
             ">: not valid JSON: " + error.message() + ".");
         }
       if (tree.empty())
-        throw std::runtime_error(
-          "The input file <" + filename +
-          "> sets no entry: give at least one (estep --print-parameters "
-          "prints them all with their defaults).");
+        throw sets_no_entry(filename);
       std::vector<std::string> sections;
       read_json_object(prm, tree, sections, filename, skip_undeclared);
     }
@@ -436,11 +442,7 @@ namespace estep
     PrmScan scan;
     scan_prm_file(filename, scan);
     if (scan.set_on_line.empty())
-      throw std::runtime_error(
-        "The input file <" + filename +
-        "> sets no entry (it is empty, or only comments and subsections): "
-        "give at least one (estep --print-parameters prints them all with "
-        "their defaults).");
+      throw sets_no_entry(filename);
     std::istringstream text(read_text(filename));
     try
       {

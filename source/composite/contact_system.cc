@@ -611,6 +611,17 @@ namespace estep
 
 
   unsigned int
+  ContactSystem::body_of_point(const unsigned int point) const
+  {
+    return std::upper_bound(offsets.begin(),
+                            offsets.begin() + bodies.size(),
+                            point) -
+           offsets.begin() - 1;
+  }
+
+
+
+  unsigned int
   ContactSystem::n_body_points() const
   {
     return offsets[bodies.size()];

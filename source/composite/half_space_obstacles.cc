@@ -673,19 +673,29 @@ namespace estep
   {
     if (std::string base = base_system->penetration(q); !base.empty())
       return base;
+    const auto found = first_point_deeper_than(q, depth_limit);
+    if (!found)
+      return "";
+    std::ostringstream text;
+    text << "a boundary point (point " << found->point << ") lies "
+         << found->depth << " behind half-space " << found->half_space + 1
+         << ", deeper than the longest boundary edge " << depth_limit
+         << " of the meshes; the penalty (Contact/Penalty parameter = " << eps
+         << ", smaller is stiffer) is too soft to hold it out.";
+    return text.str();
+  }
+
+
+
+  std::optional<HalfSpaceObstacles::PointBehind>
+  HalfSpaceObstacles::first_point_deeper_than(const Vector &q,
+                                              const double  depth) const
+  {
     for (const unsigned int i : contact_points)
       for (unsigned int k = 0; k < planes.size(); ++k)
-        if (const double depth = -signed_distance(q, i, k); depth > depth_limit)
-          {
-            std::ostringstream text;
-            text << "a boundary point (point " << i << ") lies " << depth
-                 << " behind half-space " << k + 1
-                 << ", deeper than the longest boundary edge " << depth_limit
-                 << " of the meshes; the penalty (Contact/Penalty parameter = "
-                 << eps << ", smaller is stiffer) is too soft to hold it out.";
-            return text.str();
-          }
-    return "";
+        if (const double d = -signed_distance(q, i, k); d > depth)
+          return PointBehind{i, k, d};
+    return std::nullopt;
   }
 
 

@@ -398,7 +398,7 @@ namespace estep
           const std::string name = entry.path().filename().string();
           unsigned int      index;
           if (std::sscanf(name.c_str(), "solution-%5u", &index) == 1 &&
-              name.size() > 14 && index >= self.series.size())
+              index >= self.series.size())
             std::filesystem::remove(entry.path(), failure);
         }
     largest_over_ranks(0);

@@ -633,32 +633,16 @@ namespace estep
               HalfSpaceObstacles::Mode::impenetrability,
             contact.penalty_parameter,
             longest_edge);
-          if (const unsigned int behind = obstacles->n_points_behind(q0))
-            {
-              // Name the first half-space with a vertex behind it, and the
-              // body of that vertex.
-              unsigned int plane = 0, body = 0;
-              bool         found = false;
-              for (unsigned int k = 0; k < planes.size() && !found; ++k)
-                for (const unsigned int i : obstacles->points())
-                  if (obstacles->signed_distance(q0, i, k) < 0.)
-                    {
-                      plane = k;
-                      while (body + 1 < n_bodies &&
-                             contact_system->point_offset(body + 1) <= i)
-                        ++body;
-                      found = true;
-                      break;
-                    }
-              throw std::runtime_error(
-                "Scene/Obstacles: " + std::to_string(behind) +
-                " boundary vertices of the bodies lie inside an obstacle at "
-                "t = 0, among them vertices of " +
-                body_section(body) + " behind half-space " +
-                std::to_string(plane + 1) +
-                " of Scene/Obstacles/Half-spaces; move the bodies or the "
-                "obstacles.");
-            }
+          if (const auto first = obstacles->first_point_deeper_than(q0, 0.))
+            throw std::runtime_error(
+              "Scene/Obstacles: " +
+              std::to_string(obstacles->n_points_behind(q0)) +
+              " boundary vertices of the bodies lie inside an obstacle at t = "
+              "0, among them vertices of " +
+              body_section(contact_system->body_of_point(first->point)) +
+              " behind half-space " + std::to_string(first->half_space + 1) +
+              " of Scene/Obstacles/Half-spaces; move the bodies or the "
+              "obstacles.");
           system = obstacles;
         }
       // The surfaces' points carry no weight: their mass is a placeholder.

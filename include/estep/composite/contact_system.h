@@ -167,6 +167,10 @@ namespace estep
     unsigned int
     point_offset(const unsigned int b) const;
 
+    /** The body of point @p point (a global number below n_body_points()). */
+    unsigned int
+    body_of_point(const unsigned int point) const;
+
     /** Number of points of all bodies (the surfaces' points come after). */
     unsigned int
     n_body_points() const;

@@ -201,6 +201,19 @@ namespace estep
     unsigned int
     n_points_behind(const Vector &q) const;
 
+    /** A point behind a plane: the point, the half-space (from 0) and the
+     * depth -d. */
+    struct PointBehind
+    {
+      unsigned int point, half_space;
+      double       depth;
+    };
+
+    /** The first of points() (in their order, each against the half-spaces
+     * in theirs) deeper than @p depth behind a plane at @p q, if any. */
+    std::optional<PointBehind>
+    first_point_deeper_than(const Vector &q, const double depth) const;
+
     /** The largest depth -d of a point behind a plane at @p q (0 if none). */
     double
     max_penetration(const Vector &q) const;
