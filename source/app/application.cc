@@ -37,6 +37,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -762,12 +763,13 @@ namespace estep
       // postprocessors that write a part of their own.
       auto postprocessors =
         create_run_postprocessors(prm, problem, *integrator, parameters);
-      const RunRecord record{problem,
-                             *integrator,
-                             postprocessors,
-                             parameters.start_time,
-                             parameters.end_time,
-                             warnings_about_input};
+      RunRecord record{problem,
+                       *integrator,
+                       postprocessors,
+                       parameters.start_time,
+                       parameters.end_time,
+                       warnings_about_input,
+                       std::numeric_limits<double>::quiet_NaN()};
 
       const std::filesystem::path directory(parameters.output_directory);
       const std::string   summary_file  = (directory / "summary.json").string();
@@ -817,6 +819,7 @@ namespace estep
               checkpoint->check_parameters(parameters_as_read);
               checkpoint->check_initial_state(initial_state);
               resumed_state = checkpoint->restore(*integrator);
+              record.resumed_from_time = integrator->time();
               if (integrator->time() > parameters.end_time)
                 {
                   std::ostringstream message;

@@ -46,14 +46,17 @@ namespace estep
                  const std::string &status,
                  const std::string &message)
   {
-    return JsonObject()
-      .add("estep version", ESTEP_VERSION)
+    JsonObject summary;
+    summary.add("estep version", ESTEP_VERSION)
       .add("status", status)
       .add("message", message)
       .add("system", run.problem.name)
       .add("method", run.integrator.name())
       .add("start time", run.start_time)
       .add("end time", run.end_time);
+    if (!std::isnan(run.resumed_from_time))
+      summary.add("resumed from time", run.resumed_from_time);
+    return summary;
   }
 
 

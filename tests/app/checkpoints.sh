@@ -33,8 +33,9 @@ same_run() {
   for f in solution.pvd solution.xdmf; do
     [[ ! -f $1/$f ]] || cmp -s "$1/$f" "$2/$f" || fail "$3: $f differs from the uninterrupted run"
   done
-  diff -q <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") \
-    > /dev/null || fail "$3: summary.json differs: $(diff <(grep -Ev "wall|memory" "$1/summary.json") <(grep -Ev "wall|memory" "$2/summary.json") | head -4)"
+  local skip="wall|memory|resumed from time"
+  diff -q <(grep -Ev "$skip" "$1/summary.json") <(grep -Ev "$skip" "$2/summary.json") \
+    > /dev/null || fail "$3: summary.json differs: $(diff <(grep -Ev "$skip" "$1/summary.json") <(grep -Ev "$skip" "$2/summary.json") | head -4)"
 }
 
 # kill_after_checkpoint SECONDS ARGS...: start a run, kill it (SIGKILL) SECONDS after its first
@@ -102,8 +103,15 @@ wait $pid
 rc=$?
 [[ $rc == 143 ]] || fail "SIGTERM: exit code $rc, expected 143"
 grep -q '"status": "interrupted"' run/summary.json || fail "SIGTERM: summary.json does not say interrupted"
-"$ESTEP" "${cube[@]}" --resume > /dev/null 2>&1 || fail "resume after SIGTERM"
+"$ESTEP" "${cube[@]}" --resume > resume.txt 2>&1 || fail "resume after SIGTERM"
 same_run cube_reference run "cube, SIGTERM"
+# The summary names the time the run resumed from (its wall seconds are those since then); a run
+# from the start names none.
+resumed_at=$(sed -n 's/.*resuming from .* at t = \([^ ]*\) after.*/\1/p' resume.txt)
+python3 -c "import json, sys; t = json.load(open('run/summary.json')).get('resumed from time')
+sys.exit(t is None or abs(t - $resumed_at) > 1e-5 * abs(t))" ||
+  fail "the resumed run's summary does not name t = $resumed_at: $(grep resumed run/summary.json)"
+! grep -q "resumed from" cube_reference/summary.json || fail "a run from the start says it resumed"
 
 # Contact (the impenetrable balls, killed during the collision), Newmark and energy-momentum.
 # Each is killed halfway (in wall time) between its first checkpoint and its end, as the

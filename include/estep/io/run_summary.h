@@ -21,12 +21,16 @@ namespace estep
     /** Warnings about the input (each a sentence): settings the run
      * ignores, a tracked point far from its body, more threads than cores. */
     const std::vector<std::string> &input_warnings;
+    /** The time of the checkpoint a resumed run took over from; NaN for a
+     * run from the start. */
+    double resumed_from_time;
   };
 
   /**
    * The short summary of a run that has not run to an end: estep's version,
    * @p status ("running", or "failed" when its outputs could not be opened),
-   * @p message, the system, the method and the time span.
+   * @p message, the system, the method, the time span and, for a resumed
+   * run, the time it resumed from.
    */
   JsonObject
   status_summary(const RunRecord   &run,
