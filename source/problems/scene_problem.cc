@@ -752,6 +752,14 @@ namespace estep
           typed.push_back(
             {section + "/Initial velocity", initial_velocity_type_readers()});
         }
+      if (!surfaces.empty() &&
+          contact.mode == ContactParameters::Mode::penalty)
+        problem.warnings.push_back(
+          "Scene/Obstacles/Surfaces with Contact/Mode = penalty: the penalty "
+          "between triangle pairs is not a penetration depth (a body can pass "
+          "through a thin surface), and surface triangles much larger than "
+          "the bodies' faces can stall the search at the first contact "
+          "(doc/scenes.md); Mode = impenetrability treats surfaces exactly.");
       for (const SceneBody &b : bodies)
         if (!b.tracked_point_warning.empty())
           problem.warnings.push_back(b.tracked_point_warning);
