@@ -818,7 +818,7 @@ namespace estep
             {
               checkpoint->check_parameters(parameters_as_read);
               checkpoint->check_initial_state(initial_state);
-              resumed_state = checkpoint->restore(*integrator);
+              resumed_state            = checkpoint->restore(*integrator);
               record.resumed_from_time = integrator->time();
               if (integrator->time() > parameters.end_time)
                 {

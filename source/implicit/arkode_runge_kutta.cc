@@ -10,6 +10,7 @@
 #include <arkode/arkode_butcher.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -264,15 +265,17 @@ namespace estep
             "iterations = " +
               std::to_string(settings.maximum_newton_iterations) +
               (method == Method::midpoint ? ") at the fixed step" :
-                                            ") even at the smallest step") :
+                                            ") after repeated step cuts") :
           flag == ARK_ERR_FAILURE ?
-            "the local error test failed repeatedly: the step size "
-            "collapsed to the minimum step" :
+            "the local error test failed repeatedly (tolerances tighter "
+            "than double precision reaches, or a step at the Minimum step)" :
             "ARKode failed with flag " + std::to_string(flag);
-        throw ImplicitSolverFailure(
-          name() + " failed at t = " + std::to_string(t) + " (step " +
-          std::to_string(h) + "): " + reason + ". " + im.sundials_error +
-          (im.callback_error.empty() ? "" : " [" + im.callback_error + "]"));
+        std::ostringstream message;
+        message << name() << " failed at t = " << t << " (step " << h
+                << "): " << reason << ". " << im.sundials_error
+                << (im.callback_error.empty() ? "" :
+                                                " [" + im.callback_error + "]");
+        throw ImplicitSolverFailure(message.str());
       }
     internal::copy_out(im.y, 0, q);
     internal::copy_out(im.y, im.n, v);

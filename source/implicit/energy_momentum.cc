@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -294,8 +296,13 @@ namespace estep
         im.q1[i] = q_old[i] + h * v_old[i];
     internal::copy_in(im.q1, im.u, 0);
 
+    // The residual's own round-off, about (2/h) u max |q| (q1 is known to
+    // u |q1| at best), bounds the tolerance from below: at small steps the
+    // Newton tolerance alone lies beneath it and cannot be met.
     const double tolerance =
-      settings.newton_tolerance * (1. + v_old.linfty_norm());
+      std::max(settings.newton_tolerance * (1. + v_old.linfty_norm()),
+               16. * std::numeric_limits<double>::epsilon() * (2. / h) *
+                 q_old.linfty_norm());
     KINSetFuncNormTol(im.kinsol_memory, tolerance);
     const int flag =
       KINSol(im.kinsol_memory, im.u, KIN_NONE, im.scale, im.scale);
@@ -318,11 +325,16 @@ namespace estep
             "the Newton iteration did not converge in " +
               std::to_string(settings.maximum_newton_iterations) +
               " iterations (Maximum Newton iterations)" :
+          flag == KIN_STEP_LT_STPTOL ?
+            "the Newton steps fell to round-off with the residual above the "
+            "tolerance" :
             "KINSOL failed with flag " + std::to_string(flag);
-        throw ImplicitSolverFailure(
-          "energy momentum failed at t = " + std::to_string(t) + " (step " +
-          std::to_string(h) + "): " + reason + ". " + im.sundials_error +
-          (im.callback_error.empty() ? "" : " [" + im.callback_error + "]"));
+        std::ostringstream message;
+        message << "energy momentum failed at t = " << t << " (step " << h
+                << "): " << reason << ". " << im.sundials_error
+                << (im.callback_error.empty() ? "" :
+                                                " [" + im.callback_error + "]");
+        throw ImplicitSolverFailure(message.str());
       }
     internal::copy_out(im.u, 0, q);
     for (unsigned int i = 0; i < im.n; ++i)

@@ -10,6 +10,7 @@
 #include <idas/idas_ls.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -231,15 +232,17 @@ namespace estep
             "the Newton iteration did not converge (Maximum Newton "
             "iterations = " +
               std::to_string(settings.maximum_newton_iterations) +
-              ") even at the smallest step" :
+              ") after repeated step cuts" :
           flag == IDA_ERR_FAIL ?
-            "the local error test failed repeatedly: the step size "
-            "collapsed to the minimum step" :
+            "the local error test failed repeatedly (tolerances tighter "
+            "than double precision reaches, or a step at the Minimum step)" :
             "IDA failed with flag " + std::to_string(flag);
-        throw ImplicitSolverFailure(
-          "ida bdf failed at t = " + std::to_string(t) + " (step " +
-          std::to_string(h) + "): " + reason + ". " + im.sundials_error +
-          (im.callback_error.empty() ? "" : " [" + im.callback_error + "]"));
+        std::ostringstream message;
+        message << "ida bdf failed at t = " << t << " (step " << h
+                << "): " << reason << ". " << im.sundials_error
+                << (im.callback_error.empty() ? "" :
+                                                " [" + im.callback_error + "]");
+        throw ImplicitSolverFailure(message.str());
       }
     internal::copy_out(im.y, 0, q);
     internal::copy_out(im.y, im.n, v);

@@ -1,6 +1,7 @@
 #include <estep/implicit/implicit_integrator.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -106,9 +107,12 @@ namespace estep
   {
     for (unsigned int i = 0; i < q.size(); ++i)
       if (!std::isfinite(q[i]) || !std::isfinite(v[i]))
-        throw UnstableRun("The state of " + name() +
-                          " became non-finite at t = " + std::to_string(t) +
-                          ".");
+        {
+          std::ostringstream message;
+          message << "The state of " << name()
+                  << " became non-finite at t = " << t << ".";
+          throw UnstableRun(message.str());
+        }
   }
 
 

@@ -73,8 +73,13 @@ namespace estep
   ProgressLog::finish(const TimeLoopResult &result)
   {
     line.reset();
-    if (result.status != RunStatus::failed)
-      write(integrator, ", " + to_string(result.status));
+    if (result.status == RunStatus::failed)
+      return;
+    write(integrator, ", " + to_string(result.status));
+    // Why a run ended early (unstable, stalled, penetrated, interrupted),
+    // as on the terminal.
+    if (!result.message.empty())
+      out << "estep: " << result.message << std::endl;
   }
 
 
@@ -92,21 +97,30 @@ namespace estep
                           wall * (end_time - integrator.time()) /
                             (integrator.time() - first_time) :
                           0.;
+    // A line with a suffix closes the log or opens a resumed part: no time
+    // left to tell.
+    const bool says_left = suffix.empty();
     // Whole seconds (at most 9 digits), or three digits of a time too long
     // to wait for.
-    const bool waitable = left < 1e9;
-    char       line[256];
+    const bool waitable      = left < 1e9;
+    char       time_left[64] = "";
+    if (says_left)
+      std::snprintf(time_left,
+                    sizeof(time_left),
+                    ", %.*g s left",
+                    waitable ? 9 : 3,
+                    waitable ? std::round(left) : left);
+    char line[256];
     std::snprintf(line,
                   sizeof(line),
                   "estep: t = %.6g (%.1f%%), %llu steps, %.0f steps/s, %.1f s "
-                  "elapsed, %.*g s left",
+                  "elapsed%s",
                   integrator.time(),
                   100. * done,
                   static_cast<unsigned long long>(integrator.n_steps()),
                   (integrator.n_steps() - first_step) / (wall > 0. ? wall : 1.),
                   wall,
-                  waitable ? 9 : 3,
-                  waitable ? std::round(left) : left);
+                  time_left);
     if (to_standard_output)
       std::cout << line << suffix << std::endl;
     out << line << suffix << std::endl;

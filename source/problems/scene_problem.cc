@@ -752,8 +752,7 @@ namespace estep
           typed.push_back(
             {section + "/Initial velocity", initial_velocity_type_readers()});
         }
-      if (!surfaces.empty() &&
-          contact.mode == ContactParameters::Mode::penalty)
+      if (!surfaces.empty() && contact.mode == ContactParameters::Mode::penalty)
         problem.warnings.push_back(
           "Scene/Obstacles/Surfaces with Contact/Mode = penalty: the penalty "
           "between triangle pairs is not a penetration depth (a body can pass "

@@ -281,8 +281,11 @@ namespace estep
                       [](const double x) { return std::isfinite(x); }));
       });
     if (finite_blocks < n_blocks(v.size()))
-      throw UnstableRun(
-        "The velocity became non-finite at t = " + std::to_string(t) + ".");
+      {
+        std::ostringstream message;
+        message << "The velocity became non-finite at t = " << t << ".";
+        throw UnstableRun(message.str());
+      }
   }
 
 

@@ -4,6 +4,7 @@
 #include <estep/time_integration/integrator_registry.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -84,9 +85,12 @@ namespace estep
     t          = (tau == remaining) ? t_limit : t + tau;
     count_step();
     if (!finite)
-      throw UnstableRun(
-        "The state became non-finite at t = " + std::to_string(t) +
-        ": the time step is beyond the stability limit.");
+      {
+        std::ostringstream message;
+        message << "The state became non-finite at t = " << t
+                << ": the time step is beyond the stability limit.";
+        throw UnstableRun(message.str());
+      }
   }
 
 

@@ -423,7 +423,8 @@ namespace estep
                   << " (at t = " << state.largest_energy_drift_time
                   << "), more than the " << settings.energy_drift_warning
                   << " allowed: the run has not conserved energy and its "
-                     "results say little; take a smaller step.";
+                     "results say little; take a smaller step (an adaptive "
+                     "method: tighter tolerances).";
           result.warnings.push_back(message.str());
         }
       result.final_time   = integrator.time();

@@ -419,7 +419,9 @@ wait $pid
 rc=$?
 [[ $rc == 143 ]] || fail "a run ended by SIGTERM exited with $rc, expected 143"
 grep -q '"status": "interrupted"' killed/summary.json || fail "summary.json of an interrupted run lacks status interrupted"
-tail -n 1 killed/log.txt | grep -q ", interrupted$" || fail "log.txt of an interrupted run does not say so"
+# log.txt ends with the last progress line (no time left) and why the run ended.
+tail -n 2 killed/log.txt | head -n 1 | grep -Eq "s elapsed, interrupted$" || fail "log.txt of an interrupted run does not say so: $(tail -n 2 killed/log.txt)"
+tail -n 1 killed/log.txt | grep -q "^estep: Interrupted by signal 15 at t = " || fail "log.txt of an interrupted run does not say why: $(tail -n 1 killed/log.txt)"
 
 # The ccd subcommand has its own help.
 expect 0 "estep ccd FILE_OR_DIRECTORY" -- ccd --help

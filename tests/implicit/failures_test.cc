@@ -214,6 +214,24 @@ namespace
     EXPECT_NE(result.message.find("did not converge in 1 iterations"),
               std::string::npos)
       << result.message;
+    // Times and steps as numbers of any size (not "5.000000").
+    EXPECT_NE(result.message.find("(step 5)"), std::string::npos)
+      << result.message;
+  }
+
+  // At a tiny step the Newton tolerance lies below the residual's own
+  // round-off, (2/dt) u max |q|: the method meets the round-off instead of
+  // failing at its first step (it did, with dt = 1e-6 on the 8^3 cube).
+  TEST(EnergyMomentum, TinyStepsStopAtTheRoundOff)
+  {
+    dealii::ParameterHandler prm;
+    parse(prm, "subsection Implicit integrators\nend\n");
+    const auto integrator = create("energy momentum", prm, tiny_cube(), 1e-9);
+    const auto run = estep_test::run_cube(tiny_cube(), *integrator, 1e-8);
+    EXPECT_EQ(run.result.status, estep::RunStatus::completed)
+      << run.result.message;
+    EXPECT_EQ(integrator->n_steps(), 10u);
+    EXPECT_LT(std::abs(run.energy_drift), 1e-10);
   }
 
   TEST(ForcedFailure, IdaStepCollapse)

@@ -35,7 +35,9 @@ namespace estep
    * of velocity) with the approximate Jacobian (h/2) M^-1 (4/h^2 M + H(q_m))
    * (the tangent stiffness at the midpoint, ShiftedStiffnessSolver; exact up
    * to the derivative of the discrete-gradient correction). Convergence:
-   * max |r| <= newton_tolerance (1 + max |v_n|). A failed solve throws
+   * max |r| <= newton_tolerance (1 + max |v_n|), or at tiny steps the
+   * residual's round-off 16 u (2/h) max |q_n|, whichever is larger (the
+   * tolerance alone could not be met there). A failed solve throws
    * ImplicitSolverFailure.
    */
   class EnergyMomentum : public ImplicitIntegrator
