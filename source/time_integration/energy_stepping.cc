@@ -522,9 +522,24 @@ namespace estep
     // instead of climbing and descending through the terraces, and where the
     // levels lie decides it (doc/spinning_cube.md).
     const std::uint64_t crossings = n_climbs + n_descents + n_reflections;
-    if (crossings >= min_crossings_for_reflection_warning &&
-        static_cast<double>(n_reflections) >
-          reflection_warning_share * static_cast<double>(crossings))
+    if (n_climbs + n_descents == 0 &&
+        n_reflections >= min_reflections_for_trapped_warning)
+      {
+        std::ostringstream text;
+        text << "Time integration/Energy stepping/Energy step: all "
+             << n_reflections
+             << " level crossings were reflections, none climbed or "
+                "descended: the motion is held between two levels, h = "
+             << h
+             << " apart, and follows none of the energy it could exchange "
+                "within them (a body released almost at rest under a small "
+                "load sags by less than one level along its flights); a "
+                "smaller energy step follows it.";
+        found.push_back(text.str());
+      }
+    else if (crossings >= min_crossings_for_reflection_warning &&
+             static_cast<double>(n_reflections) >
+               reflection_warning_share * static_cast<double>(crossings))
       {
         std::ostringstream text;
         text << "Time integration/Energy stepping/Energy step: "
