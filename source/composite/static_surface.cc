@@ -101,6 +101,23 @@ namespace estep
       return n;
     }
 
+    /** Whether @p in, from its start, holds a byte no text file has (a
+     * control character other than white space): binary data. */
+    bool
+    holds_binary_bytes(std::istream &in)
+    {
+      char buffer[65536];
+      while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
+        for (std::streamsize i = 0; i < in.gcount(); ++i)
+          {
+            const unsigned char c = buffer[i];
+            if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' &&
+                c != '\v')
+              return true;
+          }
+      return false;
+    }
+
     /** The little-endian IEEE single at @p bytes. */
     double
     read_float(const unsigned char *bytes)
@@ -161,13 +178,28 @@ namespace estep
       std::error_code      error;
       const std::uintmax_t size = std::filesystem::file_size(filename, error);
       if (!error && in.read(header, sizeof(header)))
-        if (const auto n = binary_stl_triangles(
-              reinterpret_cast<const unsigned char *>(header) + 80, size))
-          {
-            read_binary_stl(in, *n, surface, what);
-            surface.check();
-            return surface;
-          }
+        {
+          const auto *count =
+            reinterpret_cast<const unsigned char *>(header) + 80;
+          if (const auto n = binary_stl_triangles(count, size))
+            {
+              read_binary_stl(in, *n, surface, what);
+              surface.check();
+              return surface;
+            }
+          // Not a whole binary file, and not text either: one cut short.
+          in.seekg(0);
+          if (holds_binary_bytes(in))
+            {
+              const std::uintmax_t n = little_endian_uint32(count);
+              std::ostringstream   message;
+              message << what << "a binary STL file (it holds bytes no text "
+                      << "file has) of " << size << " bytes, where the " << n
+                      << " triangles its header counts take " << 84 + 50 * n
+                      << " (the file is cut short or damaged).";
+              throw std::runtime_error(message.str());
+            }
+        }
       in.clear();
       in.seekg(0);
     }
