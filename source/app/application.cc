@@ -37,7 +37,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -769,7 +768,7 @@ namespace estep
                        parameters.start_time,
                        parameters.end_time,
                        warnings_about_input,
-                       std::numeric_limits<double>::quiet_NaN()};
+                       std::nullopt};
 
       const std::filesystem::path directory(parameters.output_directory);
       const std::string   summary_file  = (directory / "summary.json").string();

@@ -10,7 +10,6 @@
 #include <arkode/arkode_butcher.h>
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -270,12 +269,8 @@ namespace estep
             "the local error test failed repeatedly (tolerances tighter "
             "than double precision reaches, or a step at the Minimum step)" :
             "ARKode failed with flag " + std::to_string(flag);
-        std::ostringstream message;
-        message << name() << " failed at t = " << t << " (step " << h
-                << "): " << reason << ". " << im.sundials_error
-                << (im.callback_error.empty() ? "" :
-                                                " [" + im.callback_error + "]");
-        throw ImplicitSolverFailure(message.str());
+        throw ImplicitSolverFailure(internal::solver_failure_message(
+          name(), t, h, reason, im.sundials_error, im.callback_error));
       }
     internal::copy_out(im.y, 0, q);
     internal::copy_out(im.y, im.n, v);

@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -296,9 +295,11 @@ namespace estep
         im.q1[i] = q_old[i] + h * v_old[i];
     internal::copy_in(im.q1, im.u, 0);
 
-    // The residual's own round-off, about (2/h) u max |q| (q1 is known to
-    // u |q1| at best), bounds the tolerance from below: at small steps the
-    // Newton tolerance alone lies beneath it and cannot be met.
+    // The residual's own round-off bounds the tolerance from below: q1 is
+    // known to eps |q1| at best (eps the machine epsilon), which the residual
+    // carries as (2/h) eps max |q|; at small steps the Newton tolerance alone
+    // lies beneath it and cannot be met. The velocity (2/h)(q1 - q0) - v0
+    // has that error whatever the tolerance.
     const double tolerance =
       std::max(settings.newton_tolerance * (1. + v_old.linfty_norm()),
                16. * std::numeric_limits<double>::epsilon() * (2. / h) *
@@ -329,12 +330,8 @@ namespace estep
             "the Newton steps fell to round-off with the residual above the "
             "tolerance" :
             "KINSOL failed with flag " + std::to_string(flag);
-        std::ostringstream message;
-        message << "energy momentum failed at t = " << t << " (step " << h
-                << "): " << reason << ". " << im.sundials_error
-                << (im.callback_error.empty() ? "" :
-                                                " [" + im.callback_error + "]");
-        throw ImplicitSolverFailure(message.str());
+        throw ImplicitSolverFailure(internal::solver_failure_message(
+          name(), t, h, reason, im.sundials_error, im.callback_error));
       }
     internal::copy_out(im.u, 0, q);
     for (unsigned int i = 0; i < im.n; ++i)

@@ -10,7 +10,6 @@
 #include <idas/idas_ls.h>
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -237,12 +236,8 @@ namespace estep
             "the local error test failed repeatedly (tolerances tighter "
             "than double precision reaches, or a step at the Minimum step)" :
             "IDA failed with flag " + std::to_string(flag);
-        std::ostringstream message;
-        message << "ida bdf failed at t = " << t << " (step " << h
-                << "): " << reason << ". " << im.sundials_error
-                << (im.callback_error.empty() ? "" :
-                                                " [" + im.callback_error + "]");
-        throw ImplicitSolverFailure(message.str());
+        throw ImplicitSolverFailure(internal::solver_failure_message(
+          name(), t, h, reason, im.sundials_error, im.callback_error));
       }
     internal::copy_out(im.y, 0, q);
     internal::copy_out(im.y, im.n, v);

@@ -98,8 +98,9 @@ namespace estep
       "Tolerance of the nonlinear solves of the fixed-step methods: arkode "
       "midpoint (relative and absolute tolerance of ARKode's Newton test) and "
       "energy momentum (max-norm of the velocity residual relative to "
-      "1 + max |v|; never below the residual's round-off, 16 u (2/dt) "
-      "max |q|). It bounds their energy and momentum errors.");
+      "1 + max |v|; never below the residual's round-off, 16 eps (2/dt) "
+      "max |q|, eps the machine epsilon). It bounds their energy and "
+      "momentum errors.");
     prm.declare_entry("Maximum Newton iterations",
                       std::to_string(d.maximum_newton_iterations),
                       Integer(1, 1000),

@@ -1,5 +1,6 @@
 #include "sundials_support.h"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -155,6 +156,26 @@ namespace estep
       S->ops->free              = free_solver;
       return S;
     }
+
+
+
+    std::string
+    solver_failure_message(const std::string &method,
+                           const double       t,
+                           const double       h,
+                           const std::string &reason,
+                           const std::string &sundials_error,
+                           const std::string &callback_error)
+    {
+      std::ostringstream message;
+      message << method << " failed at t = " << t << " (step " << h
+              << "): " << reason << ". " << sundials_error;
+      if (!callback_error.empty())
+        message << " [" << callback_error << "]";
+      return message.str();
+    }
+
+
 
     void
     store_error_message(int         error_code,

@@ -48,6 +48,17 @@ namespace estep
     SUNLinearSolver
     make_preconditioner_solver(SUNContext context);
 
+    /** The message of an ImplicitSolverFailure: @p method failed at time
+     * @p t with the step @p h for @p reason, then SUNDIALS' last message and
+     * a callback's error, if any. */
+    std::string
+    solver_failure_message(const std::string &method,
+                           const double       t,
+                           const double       h,
+                           const std::string &reason,
+                           const std::string &sundials_error,
+                           const std::string &callback_error);
+
     /** An error handler of IDA, ARKode and KINSOL that stores the last
      * message in the std::string user data. */
     void

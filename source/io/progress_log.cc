@@ -80,6 +80,9 @@ namespace estep
     // as on the terminal.
     if (!result.message.empty())
       out << "estep: " << result.message << std::endl;
+    if (!out)
+      throw OutputFailed("Writing the log file <" + filename +
+                         "> failed (is the disk full?).");
   }
 
 
@@ -144,8 +147,8 @@ namespace estep
         "terminal: a line on standard error rewritten in place; batch: a "
         "line every Interval on standard output; auto: terminal when "
         "standard error is a terminal, batch otherwise. Either way the "
-        "periodic lines go to log.txt in the output directory, with a last "
-        "line saying how the run ended.");
+        "periodic lines go to log.txt in the output directory, then a line "
+        "saying how the run ended and, if it ended early, why.");
       prm.declare_entry("Interval",
                         "10",
                         dealii::Patterns::Double(

@@ -54,8 +54,8 @@ namespace estep
       .add("method", run.integrator.name())
       .add("start time", run.start_time)
       .add("end time", run.end_time);
-    if (!std::isnan(run.resumed_from_time))
-      summary.add("resumed from time", run.resumed_from_time);
+    if (run.resumed_from_time)
+      summary.add("resumed from time", *run.resumed_from_time);
     return summary;
   }
 

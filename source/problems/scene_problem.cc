@@ -754,7 +754,7 @@ namespace estep
         }
       if (!surfaces.empty() && contact.mode == ContactParameters::Mode::penalty)
         problem.warnings.push_back(
-          "Scene/Obstacles/Surfaces with Contact/Mode = penalty: the penalty "
+          "Scene/Obstacles/Surface files with Contact/Mode = penalty: the penalty "
           "between triangle pairs is not a penetration depth (a body can pass "
           "through a thin surface), and surface triangles much larger than "
           "the bodies' faces can stall the search at the first contact "

@@ -523,7 +523,7 @@ namespace estep
     // levels lie decides it (doc/spinning_cube.md).
     const std::uint64_t crossings = n_climbs + n_descents + n_reflections;
     if (n_climbs + n_descents == 0 &&
-        n_reflections >= min_reflections_for_trapped_warning)
+        n_reflections >= min_reflections_for_held_warning)
       {
         std::ostringstream text;
         text << "Time integration/Energy stepping/Energy step: all "
@@ -531,10 +531,9 @@ namespace estep
              << " level crossings were reflections, none climbed or "
                 "descended: the motion is held between two levels, h = "
              << h
-             << " apart, and follows none of the energy it could exchange "
-                "within them (a body released almost at rest under a small "
-                "load sags by less than one level along its flights); a "
-                "smaller energy step follows it.";
+             << " apart, and exchanges no energy across them; where the "
+                "levels lie (Terrace offset) decides what it does. A smaller "
+                "energy step follows the motion.";
         found.push_back(text.str());
       }
     else if (crossings >= min_crossings_for_reflection_warning &&

@@ -330,7 +330,7 @@ expect 0 "completed at t = 0.1" -- "${cube[@]}" -s "Elastic body/Mesh/Subdivisio
 # An energy step above the system's energy scale: a warning that says the results mean little.
 expect 0 "warning: Time integration/Energy stepping/Energy step: h = 100 exceeds the initial energy scale" -- run.prm -s "Time integration/Energy stepping/Energy step=100" -s "Output directory=coarse"
 grep -q '"warnings": \["Time integration/Energy stepping/Energy step: h = 100' coarse/summary.json || fail "summary.json lacks the coarse energy step's warning"
-# A warning that arises during the run (energy-stepping that mostly reflects, the terrace
+# A warning that arises during the run (energy-stepping held between two levels, the terrace
 # offset study of doc/spinning_cube.md): at its end, and in summary.json.
 expect 0 "warning: Time integration/Energy stepping/Energy step: all [0-9]+ level crossings were reflections, none climbed or descended" -- "$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Time integration/End time=3" -s "Time integration/Energy stepping/Energy step=3e-5" -s "Time integration/Energy stepping/Terrace offset=0.05" -s "Postprocessors/List=history" -s "Output directory=reflecting"
 grep -q '"warnings": \["Time integration/Energy stepping/Energy step: all [0-9]* level crossings were reflections' reflecting/summary.json || fail "summary.json lacks the reflection warning"

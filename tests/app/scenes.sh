@@ -75,12 +75,12 @@ printf 'solid far\n facet normal 0 0 1\n  outer loop\n   vertex 5 5 5\n   vertex
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=surface" -s "Time integration/End time=0.4" \
   -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl, far.stl" > surface.log 2>&1 ||
   fail "scene_ball_drop on a surface: $(tail -3 surface.log)"
-! grep -q "warning: Scene/Obstacles/Surfaces" surface.log || fail "impenetrable surfaces: $(grep warning surface.log)"
+! grep -q "warning: Scene/Obstacles/Surface files" surface.log || fail "impenetrable surfaces: $(grep warning surface.log)"
 # Surfaces under penalty contact: a warning, before the run starts (stopped at once here).
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=surface_penalty" -s "Time integration/End time=1e-9" \
   -s "Contact/Mode=penalty" -s "Scene/Obstacles/Half-spaces=" -s "Scene/Obstacles/Surface files=floor.stl" \
   > surface_penalty.log 2>&1 || fail "scene_ball_drop on a surface, penalty: $(tail -3 surface_penalty.log)"
-grep -q "warning: Scene/Obstacles/Surfaces with Contact/Mode = penalty: the penalty between triangle pairs is not a penetration depth" surface_penalty.log ||
+grep -q "warning: Scene/Obstacles/Surface files with Contact/Mode = penalty: the penalty between triangle pairs is not a penetration depth" surface_penalty.log ||
   fail "surfaces under penalty contact: no warning: $(cat surface_penalty.log)"
 "$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=cantilever" > cantilever.log 2>&1 ||
   fail "scene_cantilever: $(tail -3 cantilever.log)"

@@ -220,7 +220,7 @@ namespace
   }
 
   // At a tiny step the Newton tolerance lies below the residual's own
-  // round-off, (2/dt) u max |q|: the method meets the round-off instead of
+  // round-off, 16 eps (2/dt) max |q|: the method meets the round-off instead of
   // failing at its first step (it did, with dt = 1e-6 on the 8^3 cube).
   TEST(EnergyMomentum, TinyStepsStopAtTheRoundOff)
   {

@@ -36,7 +36,8 @@ namespace estep
    * (the tangent stiffness at the midpoint, ShiftedStiffnessSolver; exact up
    * to the derivative of the discrete-gradient correction). Convergence:
    * max |r| <= newton_tolerance (1 + max |v_n|), or at tiny steps the
-   * residual's round-off 16 u (2/h) max |q_n|, whichever is larger (the
+   * residual's round-off 16 eps (2/h) max |q_n| (eps the machine epsilon),
+   * whichever is larger (the
    * tolerance alone could not be met there). A failed solve throws
    * ImplicitSolverFailure.
    */

@@ -6,6 +6,7 @@
 #include <estep/problems/problem.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,9 +22,9 @@ namespace estep
     /** Warnings about the input (each a sentence): settings the run
      * ignores, a tracked point far from its body, more threads than cores. */
     const std::vector<std::string> &input_warnings;
-    /** The time of the checkpoint a resumed run took over from; NaN for a
+    /** The time of the checkpoint a resumed run took over from; none for a
      * run from the start. */
-    double resumed_from_time;
+    std::optional<double> resumed_from_time;
   };
 
   /**

@@ -99,16 +99,16 @@ namespace estep
      * mostly reflected: of at least min_crossings_for_reflection_warning
      * level crossings, more than the share reflection_warning_share were
      * reflections. The result then depends on the terrace offset
-     * (doc/spinning_cube.md). Sooner, after min_reflections_for_trapped_warning
-     * reflections, one when no crossing has climbed or descended: the motion
-     * is held between two levels (doc/scenes.md).
+     * (doc/spinning_cube.md). In its place, when no crossing has climbed or
+     * descended and at least min_reflections_for_held_warning have reflected,
+     * one saying that the motion is held between two levels (doc/scenes.md).
      */
     std::vector<std::string>
     warnings() const override;
 
     static constexpr std::uint64_t min_crossings_for_reflection_warning = 100;
     static constexpr double        reflection_warning_share             = 0.9;
-    static constexpr std::uint64_t min_reflections_for_trapped_warning  = 10;
+    static constexpr std::uint64_t min_reflections_for_held_warning     = 10;
 
     /** Also the terrace index, the departure, the last flight and the
      * counters. */
