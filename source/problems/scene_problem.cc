@@ -313,8 +313,9 @@ namespace estep
       std::shared_ptr<const ElasticBody> body;
       Vector                             q0, v0;
       std::vector<unsigned int>          fixed_points;
-      /** Its tracked point's warning (tracked_point_warning()), or "". */
-      std::string tracked_point_warning;
+      /** Warnings about its input: a tracked point far from it
+       * (tracked_point_warning()), an initial velocity its supports drop. */
+      std::vector<std::string> warnings;
     };
 
     /** The points of @p body at the vertices of its boundary faces with one
@@ -399,8 +400,10 @@ namespace estep
           const std::array<double, 3> point =
             parse_point(tracked, section + "/Tracked point");
           body->track_point("body" + std::to_string(b + 1), point);
-          result.tracked_point_warning =
-            tracked_point_warning(*body, section + "/Tracked point", point);
+          if (std::string warning =
+                tracked_point_warning(*body, section + "/Tracked point", point);
+              !warning.empty())
+            result.warnings.push_back(std::move(warning));
         }
 
       prm.enter_subsection("Initial displacement");
@@ -462,9 +465,24 @@ namespace estep
                                  "/Supports: every vertex of the body is "
                                  "fixed; it has nothing left to move.");
       result.fixed_points.assign(fixed.begin(), fixed.end());
+      // A supported vertex does not move: its initial velocity is dropped,
+      // with a warning if it had one.
+      const double kinetic_energy_before = kinetic_energy(*body, result.v0);
       for (const unsigned int i : result.fixed_points)
         for (unsigned int c = 0; c < 3; ++c)
           result.v0[3 * i + c] = 0.;
+      if (const double dropped =
+            kinetic_energy_before - kinetic_energy(*body, result.v0);
+          dropped > 0.)
+        {
+          std::ostringstream message;
+          message << section << "/Supports: the " << fixed.size()
+                  << " vertices they fix start at rest, whatever " << section
+                  << "/Initial velocity gives them: of its kinetic "
+                  << "energy " << kinetic_energy_before << ", " << dropped
+                  << " is dropped.";
+          result.warnings.push_back(message.str());
+        }
       result.body = body;
       return result;
     }
@@ -760,8 +778,9 @@ namespace estep
           "the bodies' faces can stall the search at the first contact "
           "(doc/scenes.md); Mode = impenetrability treats surfaces exactly.");
       for (const SceneBody &b : bodies)
-        if (!b.tracked_point_warning.empty())
-          problem.warnings.push_back(b.tracked_point_warning);
+        problem.warnings.insert(problem.warnings.end(),
+                                b.warnings.begin(),
+                                b.warnings.end());
       const std::vector<std::string> unread =
         entries_unread_by_type(prm, typed);
       problem.warnings.insert(problem.warnings.end(),

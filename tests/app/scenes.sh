@@ -290,6 +290,13 @@ grep -q "started at rest" drop.log && fail "the moving ball drop warns that it s
 grep -q "warning: Time integration/Energy stepping/Energy step: all [0-9]* level crossings were reflections, none climbed or descended" held.log ||
   fail "no warning for a cantilever held between two levels: $(cat held.log)"
 grep -q "none climbed or descended" cantilever.log && fail "the vibrating cantilever warns that it is held between two levels"
+# Supports hold their vertices at rest: an initial velocity given there is dropped, with a
+# warning (it was dropped silently); the cantilever's own velocity, 0 at the clamp, gets none.
+"$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=dropped" -s "Time integration/End time=1e-6" \
+  -s "Scene/Body 1/Initial velocity/Function expression=0; 0; 0.01" > dropped.log 2>&1 || fail "the cantilever moving as a whole: $(cat dropped.log)"
+grep -q "warning: Scene/Body 1/Supports: the 13 vertices they fix start at rest, whatever Scene/Body 1/Initial velocity gives them: of its kinetic energy 5e-07, [0-9.e-]* is dropped" dropped.log ||
+  fail "no warning for a dropped initial velocity: $(cat dropped.log)"
+grep -q "start at rest, whatever" cantilever.log && fail "the cantilever warns of a velocity dropped at its clamp"
 # An entry that the body's velocity type does not read: a warning naming the body.
 "$ESTEP" "$files/scene_ball_drop.prm" -s "Output directory=unread" -s "Time integration/End time=0.001" -s "Scene/Body 1/Initial velocity/Variable names=u,v,w" > unread.log 2>&1 || fail "a scene with an unread entry failed: $(cat unread.log)"
 grep -q "warning: Scene/Body 1/Initial velocity/Variable names: Scene/Body 1/Initial velocity/Type = rigid motion does not read it (function does); it is ignored." unread.log || fail "no warning for an unread entry of a scene body: $(cat unread.log)"
