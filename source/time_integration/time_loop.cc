@@ -255,6 +255,9 @@ namespace estep
         outputs.resume_after(state.outputs_passed, integrator.time());
       checkpoints.skip_to(integrator.time());
       auto last_checkpoint = wall_start;
+      // The integrator's counters at the first step that left the time where
+      // it was (a stall's message tells what it did since).
+      std::vector<Counter> counters_in_place;
 
       const auto emit_outputs_until = [&](const double t_reached) {
         // Output times in (previous, t_reached], the end time last.
@@ -324,12 +327,28 @@ namespace estep
               check_step_rules(integrator, t_before, steps_before, t_end);
               state.steps_in_place =
                 (integrator.time() > t_before) ? 0 : state.steps_in_place + 1;
+              if (state.steps_in_place == 1)
+                counters_in_place = integrator.counters();
               if (state.steps_in_place == max_steps_in_place)
                 {
                   std::ostringstream message;
                   message << "The run stalled at t = " << integrator.time()
                           << ": " << max_steps_in_place
-                          << " steps in a row did not advance the time.";
+                          << " steps in a row did not advance the time";
+                  // What the integrator did meanwhile, e.g. reflections.
+                  const std::vector<Counter> now = integrator.counters();
+                  if (now.size() == counters_in_place.size())
+                    {
+                      message << " (" << integrator.name() << ", the last "
+                              << max_steps_in_place - 1 << " of them:";
+                      for (std::size_t i = 0; i < now.size(); ++i)
+                        if (now[i].second != counters_in_place[i].second)
+                          message
+                            << ' ' << now[i].first << " +"
+                            << now[i].second - counters_in_place[i].second;
+                      message << ')';
+                    }
+                  message << '.';
                   throw StalledRun(message.str());
                 }
               const double T = kinetic_energy(system, integrator.velocity());

@@ -407,7 +407,8 @@ namespace
     {
       none,
       past_limit,
-      no_count
+      no_count,
+      stands_still
     };
     RuleBreaker(const estep::MechanicalSystem &system, const Rule broken)
       : TimeIntegrator(system)
@@ -428,12 +429,14 @@ namespace
     void
     step(const double t_limit) override
     {
-      const double dt = 0.3;
+      const double dt = broken == Rule::stands_still && t >= 0.6 ? 0. : 0.3;
       t_previous      = t;
       t = broken == Rule::past_limit ? t + dt : std::min(t + dt, t_limit);
       q.add(t - t_previous, v);
       if (broken != Rule::no_count)
         count_step();
+      if (dt == 0.)
+        ++n_waits;
     }
     estep::Snapshot
     dense_output(const double time) const override
@@ -443,11 +446,12 @@ namespace
     std::vector<estep::Counter>
     counters() const override
     {
-      return {{"steps", n_steps()}};
+      return {{"steps", n_steps()}, {"waits", n_waits}, {"never", 0}};
     }
 
   private:
-    const Rule broken;
+    const Rule    broken;
+    std::uint64_t n_waits = 0;
   };
 
   TEST(TimeLoop, AnIntegratorThatBreaksItsRulesFailsTheRun)
@@ -473,5 +477,13 @@ namespace
     EXPECT_NE(uncounted.message.find("without counting the step"),
               std::string::npos)
       << uncounted.message;
+    // Steps that leave the time where it is end the run as stalled, with
+    // what the integrator did meanwhile (the counters that changed).
+    const TimeLoopResult still = run(RuleBreaker::Rule::stands_still);
+    EXPECT_EQ(still.status, RunStatus::stalled);
+    EXPECT_EQ(still.message,
+              "The run stalled at t = 0.6: 10000 steps in a row did not "
+              "advance the time (rule breaker, the last 9999 of them: steps "
+              "+9999 waits +9999).");
   }
 } // namespace
