@@ -8,6 +8,7 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -451,11 +452,25 @@ namespace estep
     catch (const dealii::ParameterHandler::ExcNoSubsection &exception)
       {
         // deal.II 9.4 writes "Line <n> of file <name: There is no such
-        // subsection ...", without the '>'.
-        throw std::runtime_error(
+        // subsection to be entered: A.B", without the '>' and with the path
+        // joined by dots, where estep names entries A/B.
+        std::string message =
           std::regex_replace(one_line_message(exception),
                              std::regex("of file <([^>]*): There is no such"),
-                             "of file <$1>: There is no such"));
+                             "of file <$1>: There is no such");
+        const std::string entered = "subsection to be entered: ";
+        if (const auto at = message.find(entered); at != std::string::npos)
+          {
+            std::string path = message.substr(at + entered.size());
+            std::replace(path.begin(), path.end(), '.', '/');
+            message = message.substr(0, at) + entered + path;
+            std::smatch body;
+            if (std::regex_match(path, body, std::regex("Scene/Body ([0-9]+)")))
+              message += " (Scene/Number of bodies, which declares Body 1 to "
+                         "Body N, is below " +
+                         body[1].str() + ")";
+          }
+        throw std::runtime_error(message + '.');
       }
   }
 } // namespace estep

@@ -154,7 +154,7 @@ expect 1 "unequal numbers of 'subsection' and 'end'" -- unbalanced.prm
 printf 'set Output directory = run\nsubsection Time integration\n  set Energy stepp = 1\nend\n' > unknown.prm
 expect 1 "Line <3> of file <unknown.prm>.*Energy stepp" -- unknown.prm
 printf 'set Output directory = run\nsubsection Time integraton\n  set End time = 1\nend\n' > section.prm
-expect 1 "Line <2> of file <section.prm>: There is no such subsection to be entered: Time integraton$" -- section.prm
+expect 1 "Line <2> of file <section.prm>: There is no such subsection to be entered: Time integraton\.$" -- section.prm
 printf 'set Output directory = run\nsubsection Time integration\n  subsection Energy stepping\n    set Energy step = -1\n  end\nend\n' > pattern.prm
 expect 1 "Line <4> of file <pattern.prm>.*Energy step" -- pattern.prm
 # A setting of the sampled search in a certified run is a warning, not ignored silently (a

@@ -261,6 +261,8 @@ expect_error "Scene/Obstacles: the obstacles need a contact model" "$files/scene
 expect_error "Scene/Body 3/Supports/Region: <x > 100> selects no vertex" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=x > 100"
 expect_error "Scene/Body 3/Supports: every vertex of the body is fixed" "${cradle[@]}" -s "Scene/Body 3/Supports/Region=1"
 expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has the id 7\." "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=7"
+# A file that gives more bodies than Number of bodies declares.
+expect_error "of file <$files/scene_newtons_cradle.prm>: There is no such subsection to be entered: Scene/Body 3 \(Scene/Number of bodies, which declares Body 1 to Body N, is below 3\)\.$" "${cradle[@]}" -s "Scene/Number of bodies=2"
 expect_error "Scene/Body 2/Supports/Boundary ids: no boundary face of the body has the id 7\." "${cradle[@]}" -s "Scene/Body 2/Supports/Boundary ids=0, 7"
 expect_error "Scene/Body 6: not given \(every entry at its default\); Number of bodies = 6 asks for the subsections Body 1 to Body 6\." "${cradle[@]}" -s "Scene/Number of bodies=6"
 expect_error "Scene/Body 4/Mesh: .*cannot open the gmsh file 'missing.msh'" "${cradle[@]}" -s "Scene/Body 4/Mesh/Type=gmsh" -s "Scene/Body 4/Mesh/File name=missing.msh"
