@@ -518,9 +518,11 @@ namespace estep
         "pre-stress): between levels the terraced potential exerts no force, "
         "and a flight at zero velocity reaches no level. If it should move, "
         "give it an initial velocity, however small.");
-    // Mostly reflections: the motion keeps bouncing off the level above
-    // instead of climbing and descending through the terraces, and where the
-    // levels lie decides it (doc/spinning_cube.md).
+    // Only reflections, not one climb or descent: the motion is held between
+    // two levels (doc/scenes.md). Else mostly reflections: the motion keeps
+    // bouncing off the level above instead of climbing and descending through
+    // the terraces. Either way, where the levels lie decides it
+    // (doc/spinning_cube.md).
     const std::uint64_t crossings = n_climbs + n_descents + n_reflections;
     if (n_climbs + n_descents == 0 &&
         n_reflections >= min_reflections_for_held_warning)

@@ -35,11 +35,10 @@ namespace estep
    * of velocity) with the approximate Jacobian (h/2) M^-1 (4/h^2 M + H(q_m))
    * (the tangent stiffness at the midpoint, ShiftedStiffnessSolver; exact up
    * to the derivative of the discrete-gradient correction). Convergence:
-   * max |r| <= newton_tolerance (1 + max |v_n|), or at tiny steps the
-   * residual's round-off 16 eps (2/h) max |q_n| (eps the machine epsilon),
-   * whichever is larger (the
-   * tolerance alone could not be met there). A failed solve throws
-   * ImplicitSolverFailure.
+   * max |r| <= newton_tolerance (1 + max |v_n|), or, where that is larger
+   * (tiny steps, at which the tolerance alone could not be met), the
+   * residual's round-off 16 eps (2/h) max |q_n|, eps the machine epsilon. A
+   * failed solve throws ImplicitSolverFailure.
    */
   class EnergyMomentum : public ImplicitIntegrator
   {
