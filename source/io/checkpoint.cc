@@ -19,7 +19,7 @@ namespace estep
   namespace
   {
     /** The first bytes of a checkpoint: the format and its version. */
-    const std::string magic = "estep checkpoint 4\n";
+    const std::string magic = "estep checkpoint 5\n";
 
     /** The checksum of @p bytes: enough to notice a damaged file. */
     std::uint64_t

@@ -115,8 +115,9 @@ namespace estep
     departure    = Departure::interior;
     last_flight  = 0.;
     gradient_buffer.reinit(q0.size());
-    E_h0         = terraced_energy();
-    energy_scale = std::abs(kinetic_energy(system, v0)) + std::abs(V0);
+    stay = longest_stay = StayAtLevel{t0, t0, 0};
+    E_h0                = terraced_energy();
+    energy_scale        = std::abs(kinetic_energy(system, v0)) + std::abs(V0);
   }
 
 
@@ -144,6 +145,12 @@ namespace estep
                                   n_gradients,
                                   n_stepped_over})
       out.put(n);
+    for (const StayAtLevel &s : {stay, longest_stay})
+      {
+        out.put(s.from);
+        out.put(s.to);
+        out.put(s.reflections);
+      }
   }
 
 
@@ -171,6 +178,12 @@ namespace estep
                              &n_gradients,
                              &n_stepped_over})
       *n = in.get<std::uint64_t>();
+    for (StayAtLevel *s : {&stay, &longest_stay})
+      {
+        s->from        = in.get<double>();
+        s->to          = in.get<double>();
+        s->reflections = in.get<std::uint64_t>();
+      }
     gradient_buffer.reinit(q.size());
   }
 
@@ -313,12 +326,16 @@ namespace estep
             lambda = (-a + std::sqrt(discriminant)) / m;
             ++level;
             ++n_climbs;
+            stay      = StayAtLevel{t, t, 0};
             departure = Departure::from_lower_level;
           }
         else
           {
             lambda = -2. * a / m;
             ++n_reflections;
+            stay.to = t;
+            if (++stay.reflections > longest_stay.reflections)
+              longest_stay = stay;
             departure = Departure::from_upper_level;
           }
       }
@@ -332,6 +349,7 @@ namespace estep
         lambda = (-a - std::sqrt(a * a + 2. * h * m)) / m;
         --level;
         ++n_descents;
+        stay      = StayAtLevel{t, t, 0};
         departure = Departure::from_upper_level;
       }
 
@@ -480,6 +498,12 @@ namespace estep
       .add("final terraced energy", terraced_energy())
       .add("terraced energy drift",
            relative_drift(E_h0, terraced_energy(), energy_scale));
+    if (longest_stay.reflections > 0)
+      energies.add("longest stay at one level",
+                   JsonObject()
+                     .add("from", longest_stay.from)
+                     .add("to", longest_stay.to)
+                     .add("reflections", longest_stay.reflections));
   }
 
 

@@ -292,6 +292,63 @@ grep -q "started at rest" drop.log && fail "the moving ball drop warns that it s
 grep -q "warning: Time integration/Energy stepping/Energy step: all [0-9]* level crossings were reflections, none climbed or descended" held.log ||
   fail "no warning for a cantilever held between two levels: $(cat held.log)"
 grep -q "none climbed or descended" cantilever.log && fail "the vibrating cantilever warns that it is held between two levels"
+# summary.json's longest stay at one level: the held cantilever's whole run; a box on a
+# frictionless incline (h = 1e-5) held from its bounce at t = 0.0186 to t = 0.0413 (337
+# reflections) while gravity should have pulled it back to the plane.
+cat > incline.prm <<'PRM'
+subsection Problem
+  set System = scene
+end
+subsection Scene
+  set Gravity = 0, 0, -9.81
+  subsection Body 1
+    subsection Mesh
+      set Type = box
+      set Lower corner = -0.05, -0.05, 0
+      set Upper corner = 0.05, 0.05, 0.1
+      set Subdivisions = 2
+    end
+    subsection Placement
+      set Rotation axis = 0, 1, 0
+      set Rotation angle = 30
+      set Shift = 0, 0, 0.001
+    end
+    subsection Material
+      set Density = 1000
+      subsection Neo-Hookean
+        set Lambda = 2e6
+        set Mu = 1e6
+      end
+    end
+    subsection Initial velocity
+      set Translational velocity = 0.0866, 0, -0.05
+    end
+  end
+  subsection Obstacles
+    set Half-spaces = 0, 0, 0, 0.5, 0, 0.8660254
+  end
+end
+subsection Contact
+  set Mode = impenetrability
+end
+subsection Time integration
+  set End time = 0.06
+  subsection Energy stepping
+    set Energy step = 1e-5
+  end
+end
+PRM
+"$ESTEP" incline.prm -s "Output directory=incline" > incline.log 2>&1 || fail "the box on an incline: $(tail -3 incline.log)"
+/usr/bin/python3 - <<'PY' || fail "the longest stays at one level"
+import json, sys
+held = json.load(open("held/summary.json"))
+stay = held["energies"]["longest stay at one level"]
+ok = stay["from"] == 0 and stay["reflections"] == held["counters"]["reflections"]
+stay = json.load(open("incline/summary.json"))["energies"]["longest stay at one level"]
+ok = ok and stay["from"] < 0.02 and stay["to"] > 0.04 and stay["reflections"] > 200
+print("longest stays:", held["energies"]["longest stay at one level"], stay)
+sys.exit(not ok)
+PY
 # Supports hold their vertices at rest: an initial velocity given there is dropped, with a
 # warning (it was dropped silently); the cantilever's own velocity, 0 at the clamp, gets none.
 "$ESTEP" "$files/scene_cantilever.prm" -s "Output directory=dropped" -s "Time integration/End time=1e-6" \

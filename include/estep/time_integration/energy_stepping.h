@@ -87,8 +87,9 @@ namespace estep
     std::vector<Counter>
     counters() const override;
 
-    /** Energy step, terrace offset, and the terraced energy at the start and
-     * the end with its drift. */
+    /** Energy step, terrace offset, the terraced energy at the start and
+     * the end with its drift, and the longest stay at one level with
+     * reflections. */
     void
     add_energies_to_summary(JsonObject &energies) const override;
 
@@ -206,6 +207,19 @@ namespace estep
                   search(const FreeFlight &flight, const CrossingQuery &query);
     std::uint64_t n_climbs = 0, n_descents = 0, n_reflections = 0,
                   n_constraint_events = 0, n_gradients = 0;
+
+    /**
+     * A stay at one level: the time of the last climb or descent (or of the
+     * start) and the reflections since. The longest stay with reflections so
+     * far, in reflections, goes to the summary: a motion held between two
+     * levels for a stretch of the run (doc/scenes.md).
+     */
+    struct StayAtLevel
+    {
+      double        from = 0., to = 0.;
+      std::uint64_t reflections = 0;
+    };
+    StayAtLevel stay, longest_stay;
   };
 } // namespace estep
 
