@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace estep
@@ -99,11 +100,25 @@ namespace estep
         }
       catch (const std::exception &e)
         {
+          // deal.II names the arguments' pattern, a tuple of so many parts
+          // separated by ':': say first how many the entry gives.
+          const std::string what = one_line_message(e);
+          std::string       count;
+          std::smatch       tuple;
+          if (std::regex_search(what,
+                                tuple,
+                                std::regex("Tuple of <([0-9]+)> elements")))
+            if (const std::size_t given =
+                  dealii::Utilities::split_string_list(d.arguments, ':').size();
+                std::to_string(given) != tuple[1].str())
+              count = "it takes " + tuple[1].str() +
+                      " arguments separated by ':', and these are " +
+                      std::to_string(given) + ". ";
           AssertThrow(false,
                       dealii::ExcMessage("Mesh: the deal.II generator '" +
                                          d.generator + "' with arguments '" +
-                                         d.arguments +
-                                         "' failed: " + one_line_message(e)));
+                                         d.arguments + "' failed: " + count +
+                                         what));
         }
       throw_if_too_many_cells(d, hex.n_active_cells());
       hex.refine_global(d.n_refinements);

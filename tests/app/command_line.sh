@@ -246,6 +246,8 @@ cube=("$ESTEP_SOURCE_DIR/parameter_files/spinning_cube.prm" -s "Elastic body/Mes
 expect 1 "Function expression: <sqrt\(; 0; 0> cannot be evaluated: <Unexpected end of expression" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(; 0; 0"
 expect 1 "Elastic body/Initial velocity/Function expression: <sqrt\(-1\); 0; 0> is -?nan at the point \([-0-9.e+, ]+\) \(component 0\)\.$" -- "${cube[@]}" -s "Elastic body/Initial velocity/Type=function" -s "Elastic body/Initial velocity/Function expression=sqrt(-1); 0; 0"
 expect 1 "Elastic body/Mesh: the deal.II generator 'hyper_cubee' with arguments '0 : 1 : false' failed: hyper_cubee\(0 : 1 : false\) not implemented" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=hyper_cubee"
+# Arguments missing one part (colorize): how many the generator takes, before deal.II's pattern.
+expect 1 "Elastic body/Mesh: the deal.II generator 'subdivided_hyper_rectangle' with arguments '2, 2, 2 : 0, 0, 0 : 1, 1, 1' failed: it takes 4 arguments separated by ':', and these are 3\. The string" -- "${cube[@]}" -s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=subdivided_hyper_rectangle" -s "Elastic body/Mesh/Generator arguments=2, 2, 2 : 0, 0, 0 : 1, 1, 1"
 # Subdivisions that deal.II would read as 4294967295, or too many, are refused before it allocates
 # (-1 took 14 GB in a minute; 4294967295 crashed it).
 gen=(-s "Elastic body/Mesh/Type=deal.II" -s "Elastic body/Mesh/Generator=subdivided_hyper_rectangle")
