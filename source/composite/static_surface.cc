@@ -101,21 +101,19 @@ namespace estep
       return n;
     }
 
-    /** Whether @p in, from its start, holds a byte no text file has (a
-     * control character other than white space): binary data. */
+    /** Whether the first 4 KiB of @p in hold a byte no text file has (a
+     * control character other than white space): binary data (a binary
+     * STL file's triangle count alone has such bytes). */
     bool
     holds_binary_bytes(std::istream &in)
     {
-      char buffer[65536];
-      while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
-        for (std::streamsize i = 0; i < in.gcount(); ++i)
-          {
-            const unsigned char c = buffer[i];
-            if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' &&
-                c != '\v')
-              return true;
-          }
-      return false;
+      char buffer[4096];
+      in.read(buffer, sizeof(buffer));
+      return std::any_of(buffer, buffer + in.gcount(), [](const char b) {
+        const unsigned char c = b;
+        return c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' &&
+               c != '\v';
+      });
     }
 
     /** The little-endian IEEE single at @p bytes. */
