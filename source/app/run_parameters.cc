@@ -152,13 +152,7 @@ namespace estep
       throw std::runtime_error(
         "Time integration/End time: must be larger than the start time (" +
         number(start_time) + ").");
-    // Times are resolved to about a million units of round-off of the
-    // largest time of the run: a shorter span or output interval could not
-    // be stepped through in floating point.
-    const double time_resolution =
-      std::ldexp(std::numeric_limits<double>::epsilon() *
-                   std::max(std::abs(start_time), std::abs(end_time)),
-                 20);
+    const double time_resolution = estep::time_resolution(start_time, end_time);
     if (end_time - start_time < time_resolution)
       throw std::runtime_error(
         "Time integration/End time: the time span " +

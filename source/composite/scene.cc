@@ -6,11 +6,13 @@ namespace estep
   Scene::Scene(std::shared_ptr<const MechanicalSystem> system,
                std::shared_ptr<const ElasticBodies>    bodies,
                StateMap                                to_bodies,
-               const std::string                      &name)
+               const std::string                      &name,
+               const bool                              has_supports)
     : SystemDecorator(std::move(system))
     , bodies(std::move(bodies))
     , to_bodies(std::move(to_bodies))
     , scene_name(name)
+    , has_supports(has_supports)
   {}
 
 
@@ -102,5 +104,12 @@ namespace estep
   {
     points    = obstacle_points;
     triangles = obstacle_triangles;
+  }
+
+
+  bool
+  Scene::bodies_only_meet_each_other() const
+  {
+    return !has_supports && obstacle_triangles.empty();
   }
 } // namespace estep

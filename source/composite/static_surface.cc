@@ -222,7 +222,16 @@ namespace estep
         throw std::runtime_error(what + "unexpected <" + word +
                                  "> (the file is cut short or malformed).");
     };
-    while (in >> word)
+    // Keywords in any case: some exporters write them in capitals.
+    const auto read_keyword = [&]() -> bool {
+      if (!(in >> word))
+        return false;
+      for (char &letter : word)
+        letter =
+          static_cast<char>(std::tolower(static_cast<unsigned char>(letter)));
+      return true;
+    };
+    while (read_keyword())
       if (word == "solid")
         {
           expect(place == Place::before_solid || place == Place::after_solid);
@@ -237,7 +246,7 @@ namespace estep
       else if (word == "facet")
         {
           expect(place == Place::in_solid);
-          if (!(in >> word) || word != "normal")
+          if (!read_keyword() || word != "normal")
             throw std::runtime_error(what + "'facet' without 'normal'.");
           std::string normal; // not used (exporters write NaN for some)
           std::getline(in, normal);
@@ -246,7 +255,7 @@ namespace estep
       else if (word == "outer")
         {
           expect(place == Place::in_facet);
-          if (!(in >> word) || word != "loop")
+          if (!read_keyword() || word != "loop")
             throw std::runtime_error(what + "'outer' without 'loop'.");
           loop.clear();
           place = Place::in_loop;

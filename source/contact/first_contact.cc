@@ -132,6 +132,51 @@ namespace estep
             {
               sa = (B * E - C * D) / det;
               sb = (A * E - B * D) / det;
+              // Beyond an end of either edge the lines' closest points are
+              // not the edges': the edges come closest at an end (a vertex
+              // meets the other edge), and the lines' normal, perpendicular
+              // to both edges, can be perpendicular to the way they approach
+              // (an edge that meets the other end-on: a box's vertical edge
+              // resting with its lower end on a floor's edge had the
+              // horizontal normal across that edge). The edges' distance is
+              // that of their own closest points (the lines' clamped as in
+              // Ericson, Real-Time Collision Detection, 5.1.9), its gradient
+              // along their difference; weights at those points keep the net
+              // force and torque zero. Where the difference is within
+              // round-off it has no direction: the lines' normal is kept.
+              if (sa < 0. || sa > 1. || sb < 0. || sb > 1.)
+                {
+                  double ta = std::clamp(sa, 0., 1.);
+                  double tb = (E + ta * B) / C;
+                  if (tb < 0.)
+                    {
+                      tb = 0.;
+                      ta = std::clamp(-D / A, 0., 1.);
+                    }
+                  else if (tb > 1.)
+                    {
+                      tb = 1.;
+                      ta = std::clamp((B - D) / A, 0., 1.);
+                    }
+                  Point3 d;
+                  double size = 0.;
+                  for (unsigned int k = 0; k < 3; ++k)
+                    {
+                      d[k] = (a0[k] + ta * da[k]) - (b0[k] + tb * db[k]);
+                      size = std::max({size,
+                                       std::abs(a0[k]),
+                                       std::abs(a1[k]),
+                                       std::abs(b0[k]),
+                                       std::abs(b1[k])});
+                    }
+                  const double roundoff = 64. * unit * size;
+                  if (dot(d, d) > roundoff * roundoff)
+                    {
+                      n  = d;
+                      sa = ta;
+                      sb = tb;
+                    }
+                }
             }
           else
             {

@@ -311,6 +311,10 @@ namespace estep
     create_arkode(dealii::ParameterHandler &prm, const MechanicalSystem &system)
     {
       const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      if (method == ArkodeRungeKutta::Method::midpoint)
+        require_resolvable_time_step(prm,
+                                     "Implicit integrators/Time step",
+                                     parameters.time_step);
       if (method == ArkodeRungeKutta::Method::dirk)
         parameters.check_adaptive();
       return std::make_unique<ArkodeRungeKutta>(system,

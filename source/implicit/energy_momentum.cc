@@ -364,6 +364,9 @@ namespace estep
                            const MechanicalSystem   &system)
     {
       const ImplicitParameters parameters = parse_implicit_parameters(prm);
+      require_resolvable_time_step(prm,
+                                   "Implicit integrators/Time step",
+                                   parameters.time_step);
       const auto *body = dynamic_cast<const ElasticBody *>(&system);
       if (body == nullptr)
         throw std::invalid_argument(

@@ -68,7 +68,8 @@ namespace estep
       "Time step",
       "1e-3",
       Double(0., Double::max_double_value),
-      "The fixed time step of arkode midpoint and energy momentum; the "
+      "The fixed time step of arkode midpoint and energy momentum (at "
+      "least about a million units of round-off of the End time); the "
       "initial step of the adaptive methods (ida bdf, arkode irk).");
     prm.declare_entry(
       "Relative tolerance",

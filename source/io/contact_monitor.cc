@@ -48,7 +48,8 @@ namespace estep
         [](const Vector &q, const Vector &v, Vector &qc, Vector &vc) {
           qc = q;
           vc = v;
-        })
+        },
+        true)
   {}
 
 
@@ -59,10 +60,12 @@ namespace estep
     const Vector                               &q,
     const Vector                               &v,
     StateMap                                    to_contact,
+    const bool                                  bodies_alone,
     std::function<unsigned int(const Vector &)> obstacle_count)
     : system(system)
     , integrator(integrator)
     , to_contact(std::move(to_contact))
+    , two_bodies_alone(bodies_alone && system.n_bodies() == 2)
     , obstacle_count(std::move(obstacle_count))
   {
     this->to_contact(q, v, q0, v0);
@@ -176,6 +179,14 @@ namespace estep
 
 
   double
+  ContactMonitor::contact_duration_resolution() const
+  {
+    return std::max(step_before_first_contact, step_after_last_contact);
+  }
+
+
+
+  double
   ContactMonitor::restitution(const Vector &q0,
                               const Vector &v0,
                               const Vector &q1,
@@ -219,7 +230,7 @@ namespace estep
                                         const Vector &q1,
                                         const Vector &v1) const
   {
-    if (!contact_over())
+    if (!two_bodies_alone || !contact_over())
       return std::numeric_limits<double>::quiet_NaN();
     return restitution(q0, v0, q1, v1);
   }
@@ -241,8 +252,7 @@ namespace estep
       result.add("first contact instant", first_contact)
         .add("last contact instant", last_contact)
         .add("contact duration", contact_duration())
-        .add("contact duration resolution",
-             std::max(step_before_first_contact, step_after_last_contact));
+        .add("contact duration resolution", contact_duration_resolution());
     const double e = collision_restitution(q0, v0, q1, v1);
     if (std::isfinite(e))
       result.add("coefficient of restitution", e);
@@ -268,10 +278,18 @@ namespace estep
     if (n_contact_instants == 0)
       out << "no contact";
     else
-      out << "contact from t = " << first_contact << " to " << last_contact
-          << " (duration " << contact_duration() << ", " << n_contact_instants
-          << " step ends in contact"
-          << (contact_over() ? "" : ", perhaps not over") << ")";
+      {
+        out << "contact from t = " << first_contact << " to " << last_contact
+            << " (duration " << contact_duration();
+        // (Under impenetrability the instants are the constraint events
+        // themselves.)
+        if (!system.has_constraints() &&
+            contact_duration_resolution() > contact_duration())
+          out << ", unresolved: the steps around it are as long as "
+              << contact_duration_resolution();
+        out << ", " << n_contact_instants << " step ends in contact"
+            << (contact_over() ? "" : ", perhaps not over") << ")";
+      }
     const double e = collision_restitution(q0, v0, q1, v1);
     if (std::isfinite(e))
       out << ", coefficient of restitution " << e;
@@ -302,6 +320,7 @@ namespace estep
           run.q0,
           run.v0,
           scene->state_map(),
+          scene->bodies_only_meet_each_other(),
           [scene](const Vector &q) { return scene->n_points_in_obstacles(q); });
       return nullptr;
     }

@@ -2,6 +2,8 @@
 
 #include <estep/materials/material_registry.h>
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -35,6 +37,106 @@ namespace estep
 
 
 
+  namespace
+  {
+    std::string
+    number(const double x)
+    {
+      std::ostringstream text;
+      text.precision(10);
+      text << x;
+      return text.str();
+    }
+
+    /**
+     * Throws, naming @p what, unless the material's functions agree with each
+     * other at a few stretches J: finite values, f' the derivative of f and
+     * f'' that of f' (against central differences), the values inside the
+     * ranges of a small interval about J, and a stress-free reference state,
+     * f'(1) = -c. A material of one's own that gets one of these wrong would
+     * otherwise run without a word: the search trusts what it is told.
+     */
+    void
+    check_material(const Material &material, const std::string &what)
+    {
+      const double c    = material.quadratic_modulus();
+      const auto   fail = [&](const double J, const std::string &text) {
+        throw std::runtime_error(what + ": at J = " + number(J) + ", " + text +
+                                 " (doc/extending.md, \"A material\").");
+      };
+      for (const double J : {0.5, 0.8, 1., 1.25, 2.})
+        {
+          const double f   = material.volumetric_energy(J);
+          const double df  = material.volumetric_derivative(J);
+          const double d2f = material.volumetric_second_derivative(J);
+          if (!std::isfinite(f) || !std::isfinite(df) || !std::isfinite(d2f))
+            fail(J,
+                 "f, f' and f'' are not all finite: " + number(f) + ", " +
+                   number(df) + ", " + number(d2f));
+          const double d          = 1e-4 * J;
+          const double f_quotient = (material.volumetric_energy(J + d) -
+                                     material.volumetric_energy(J - d)) /
+                                    (2. * d);
+          const double df_quotient = (material.volumetric_derivative(J + d) -
+                                      material.volumetric_derivative(J - d)) /
+                                     (2. * d);
+          // The differences' truncation, d^2 f''' / 6, and round-off,
+          // eps |f| / d, lie far below these bounds.
+          const double scale = std::abs(df) + c + J * std::abs(d2f);
+          if (!(std::abs(df - f_quotient) <= 1e-6 * scale))
+            fail(J,
+                 "volumetric_derivative() returns f' = " + number(df) +
+                   " where the central difference of volumetric_energy() "
+                   "gives " +
+                   number(f_quotient) + ": f' is not the derivative of f");
+          if (!(J * std::abs(d2f - df_quotient) <= 1e-5 * scale))
+            fail(J,
+                 "volumetric_second_derivative() returns f'' = " + number(d2f) +
+                   " where the central difference of "
+                   "volumetric_derivative() gives " +
+                   number(df_quotient) + ": f'' is not the derivative of f'");
+          const Interval around{J * (1. - 1e-3), J * (1. + 1e-3)};
+          const auto     check_range = [&](const std::string &function,
+                                       const Interval    &range,
+                                       const auto        &point_function) {
+            for (const double x : {around.lower, J, around.upper})
+              if (const double value = point_function(x);
+                  !(range.lower <= value && value <= range.upper))
+                fail(J,
+                     function + " over [" + number(around.lower) + ", " +
+                       number(around.upper) + "] is [" + number(range.lower) +
+                       ", " + number(range.upper) +
+                       "], which misses the value " + number(value) + " at " +
+                       number(x) +
+                       ": a range must hold every value in its interval");
+          };
+          check_range("volumetric_energy_range()",
+                      material.volumetric_energy_range(around),
+                      [&](const double x) {
+                        return material.volumetric_energy(x);
+                      });
+          check_range("volumetric_derivative_range()",
+                      material.volumetric_derivative_range(around),
+                      [&](const double x) {
+                        return material.volumetric_derivative(x);
+                      });
+          check_range("volumetric_second_derivative_range()",
+                      material.volumetric_second_derivative_range(around),
+                      [&](const double x) {
+                        return material.volumetric_second_derivative(x);
+                      });
+        }
+      if (const double stress = material.volumetric_derivative(1.) + c;
+          !(std::abs(stress) <= 1e-8 * c))
+        fail(1.,
+             "f'(1) + c = " + number(stress) +
+               " where it must be 0: the reference state is not stress-free "
+               "(its first Piola stress is (f'(1) + c) I)");
+    }
+  } // namespace
+
+
+
   MaterialChoice
   parse_material_parameters(dealii::ParameterHandler &prm,
                             const std::string        &section)
@@ -59,6 +161,7 @@ namespace estep
         // The plugin names its entry relative to its own subsection.
         throw std::runtime_error(section + "/" + error.what());
       }
+    check_material(*choice.material, section + "/Model = " + model);
     return choice;
   }
 

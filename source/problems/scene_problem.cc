@@ -64,7 +64,10 @@ namespace estep
               }))
             throw std::runtime_error(
               "Scene/Obstacles/Half-spaces: <" + item +
-              "> is not six finite numbers p_x, p_y, p_z, n_x, n_y, n_z.");
+              "> is not six finite numbers p_x, p_y, p_z, n_x, n_y, n_z" +
+              (x.size() > 6 && x.size() % 6 == 0 ?
+                 " (half-spaces are separated by ';')." :
+                 "."));
           // std::hypot: the norm of a normal of large components does not
           // overflow.
           const double norm = std::hypot(x[3], x[4], x[5]);
@@ -716,15 +719,15 @@ namespace estep
           problem.v0 = v0;
         }
 
+      const auto n_supported_vertices = static_cast<unsigned int>(
+        fixed.size() -
+        (contact_system ? contact_system->surface_points().size() : 0));
       unsigned int n_cells = 0;
       for (const auto &b : body_list)
         n_cells += b->n_cells();
       problem.description.add("bodies", n_bodies)
         .add("cells", n_cells)
-        .add("fixed vertices",
-             static_cast<unsigned int>(
-               fixed.size() -
-               (contact_system ? contact_system->surface_points().size() : 0)))
+        .add("fixed vertices", n_supported_vertices)
         .add("gravity", std::vector<double>(gravity.begin(), gravity.end()))
         .add("obstacles", static_cast<unsigned int>(planes.size()))
         .add("surface obstacles", static_cast<unsigned int>(surfaces.size()))
@@ -741,7 +744,8 @@ namespace estep
       auto scene = std::make_unique<Scene>(system,
                                            bodies_system,
                                            std::move(to_bodies),
-                                           "scene");
+                                           "scene",
+                                           n_supported_vertices > 0);
       if (obstacles)
         scene->set_obstacle_count([obstacles, supported](const Vector &q) {
           return obstacles->n_points_behind(supported ? supported->expand(q) :

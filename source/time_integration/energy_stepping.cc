@@ -115,6 +115,7 @@ namespace estep
     departure    = Departure::interior;
     last_flight  = 0.;
     gradient_buffer.reinit(q0.size());
+    force_mass_norm = measure_force_mass_norm();
     stay = longest_stay = StayAtLevel{t0, t0, 0};
     E_h0                = terraced_energy();
     energy_scale        = std::abs(kinetic_energy(system, v0)) + std::abs(V0);
@@ -185,6 +186,7 @@ namespace estep
         s->reflections = in.get<std::uint64_t>();
       }
     gradient_buffer.reinit(q.size());
+    force_mass_norm = measure_force_mass_norm();
   }
 
 
@@ -299,6 +301,15 @@ namespace estep
         message << "The velocity became non-finite at t = " << t << ".";
         throw UnstableRun(message.str());
       }
+  }
+
+
+
+  double
+  EnergyStepping::measure_force_mass_norm()
+  {
+    system.gradient(q, gradient_buffer);
+    return slope_and_mass_norm(gradient_buffer).second;
   }
 
 
@@ -532,16 +543,30 @@ namespace estep
                 "unseen; take a smaller penalty parameter or energy step.";
         found.push_back(text.str());
       }
-    // At rest from the start: between levels the terraced potential exerts
-    // no force, and a flight at zero velocity reaches no level.
-    if (n_climbs + n_descents + n_reflections + n_constraint_events == 0 &&
-        v.linfty_norm() == 0.)
-      found.push_back(
-        "Energy stepping: the system started at rest (kinetic energy 0) and "
-        "stayed exactly where it was, whatever the forces on it (gravity, a "
-        "pre-stress): between levels the terraced potential exerts no force, "
-        "and a flight at zero velocity reaches no level. If it should move, "
-        "give it an initial velocity, however small.");
+    // No level crossed: between levels the terraced potential exerts no
+    // force, and the run was one straight flight at the initial velocity.
+    // Worth a word when the forces at the start, acting from rest for as
+    // long, would have given more than a level's worth of kinetic energy.
+    if (const double span = t - stay.from;
+        n_climbs + n_descents + n_reflections + n_constraint_events == 0 &&
+        0.5 * force_mass_norm * span * span > h)
+      {
+        std::ostringstream text;
+        text << "Energy stepping: the system crossed no level from t = "
+             << stay.from << " to " << t << ", and "
+             << (v.linfty_norm() == 0. ?
+                   "stayed exactly where it was, at rest" :
+                   "flew straight at its initial velocity")
+             << ", whatever the forces on it: between levels the terraced "
+                "potential exerts none. From rest, the forces at the start "
+                "would have given it a kinetic energy of "
+             << 0.5 * force_mass_norm * span * span
+             << " in that time, more than the energy step h = " << h
+             << ". Its velocity runs along a level of V (zero, or sideways "
+                "under gravity): give it a component along the forces, "
+                "however small.";
+        found.push_back(text.str());
+      }
     // Only reflections, not one climb or descent: the motion is held between
     // two levels (doc/scenes.md). Else mostly reflections: the motion keeps
     // bouncing off the level above instead of climbing and descending through

@@ -150,11 +150,13 @@ namespace estep
     declare_explicit_newmark_parameters(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Explicit Newmark");
-      prm.declare_entry("Time step",
-                        "1e-3",
-                        dealii::Patterns::Double(
-                          0., dealii::Patterns::Double::max_double_value),
-                        "The fixed time step; must be positive.");
+      prm.declare_entry(
+        "Time step",
+        "1e-3",
+        dealii::Patterns::Double(0.,
+                                 dealii::Patterns::Double::max_double_value),
+        "The fixed time step; at least about a million units of "
+        "round-off of the End time.");
       prm.leave_subsection();
     }
 
@@ -165,9 +167,7 @@ namespace estep
       prm.enter_subsection("Explicit Newmark");
       const double dt = prm.get_double("Time step");
       prm.leave_subsection();
-      if (!(dt > 0.))
-        throw std::runtime_error(
-          "Time integration/Explicit Newmark/Time step: must be positive.");
+      require_resolvable_time_step(prm, "Explicit Newmark/Time step", dt);
       return std::make_unique<ExplicitNewmark>(system, dt);
     }
   } // namespace

@@ -2,7 +2,9 @@
 
 #include <estep/systems/mechanical_system.h>
 #include <estep/time_integration/integrator_registry.h>
+#include <estep/time_integration/time_loop.h>
 
+#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -44,6 +46,28 @@ namespace estep
                                "Time integration/Method = " + method) +
         "; its settings are ignored.");
     return warnings;
+  }
+
+
+
+  void
+  require_resolvable_time_step(dealii::ParameterHandler &prm,
+                               const std::string        &entry,
+                               const double              time_step)
+  {
+    const double start_time = prm.get_double("Start time");
+    const double end_time   = prm.get_double("End time");
+    const double resolution = time_resolution(start_time, end_time);
+    if (time_step < resolution)
+      {
+        std::ostringstream message;
+        message << "Time integration/" << entry << ": " << time_step
+                << " is below the resolution of the run's times (" << resolution
+                << " up to End time = " << end_time
+                << "): the steps could not advance the time accurately; "
+                << "take a larger step.";
+        throw std::runtime_error(message.str());
+      }
   }
 
 

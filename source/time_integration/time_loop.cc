@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,16 @@ namespace estep
   void
   RunObserver::after_step(const TimeIntegrator &)
   {}
+
+  double
+  time_resolution(const double start_time, const double end_time)
+  {
+    return std::ldexp(std::numeric_limits<double>::epsilon() *
+                        std::max(std::abs(start_time), std::abs(end_time)),
+                      20);
+  }
+
+
 
   std::string
   to_string(const RunStatus status)

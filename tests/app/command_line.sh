@@ -320,6 +320,8 @@ if grep -Eqi "nan|inf" blowup/history.csv; then fail "history.csv of a blow-up h
 # Times that floating point cannot step through, and runaway output intervals: input errors.
 expect 1 "End time: the time span .* below the resolution" -- run.prm -s "Time integration/Start time=1e16" -s "Time integration/End time=1.000000000000001e16"
 expect 1 "History interval: below the resolution" -- run.prm -s "Output/History interval=1e-300"
+expect 1 "Time integration/Explicit Newmark/Time step: 1e-300 is below the resolution of the run's times" -- run.prm -s "Time integration/Method=explicit newmark" -s "Time integration/Explicit Newmark/Time step=1e-300"
+expect 1 "Time integration/Implicit integrators/Time step: 1e-300 is below the resolution" -- run.prm -s "Time integration/Method=energy momentum" -s "Time integration/Implicit integrators/Time step=1e-300"
 expect 1 "Field output/Interval: would write more than" -- "${cube[@]}" -s "Postprocessors/List=history, step histogram, progress, field output" -s "Postprocessors/Field output/Interval=1e-9"
 
 # A run whose V has a round-off far above the energy step (Mu = 1e300) ends as stalled at once,

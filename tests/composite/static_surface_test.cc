@@ -131,6 +131,22 @@ TEST(StaticSurface, ReadsStl)
   EXPECT_EQ(floor.triangles[1], (estep::contact::TriangleIndices{{0, 2, 3}}));
 }
 
+TEST(StaticSurface, ReadsStlKeywordsInAnyCase)
+{
+  // Some exporters write the keywords (and the exponents' letters) in
+  // capitals.
+  std::string text = stl_text(floor_triangles(2.5e-5));
+  for (char &letter : text)
+    letter = static_cast<char>(std::toupper(letter));
+  ASSERT_NE(text.find("ENDSOLID"), std::string::npos);
+  ASSERT_NE(text.find("E-05"), std::string::npos);
+  const StaticSurface floor =
+    estep::read_static_surface(write_file("static_surface_capitals.stl", text));
+  EXPECT_EQ(floor.n_points(), 4u);
+  EXPECT_EQ(floor.triangles.size(), 2u);
+  EXPECT_EQ(floor.points[0], -2.5e-5);
+}
+
 TEST(StaticSurface, ReadsBinaryStl)
 {
   // The floor as a binary STL whose header begins with "solid", as many

@@ -143,6 +143,54 @@ TEST(FirstContact, TouchingPairsApproachOrSeparate)
     }
 }
 
+TEST(FirstContact, EdgeStandingOnAnEdgeEndOnHasTheNormalOfItsEnd)
+{
+  // A flat floor of two triangles (points 0-3, z = 0) that share the diagonal
+  // edge 0-2 from (-1, -1) to (1, 1), and a body triangle (points 4-6) whose
+  // edge 4-5 stands on that diagonal end-on: point 4 at (0, 0, 1e-6), within
+  // the collision tolerance, point 5 straight above it. The lines of the two
+  // edges meet at the origin, just beyond point 4: their common normal is
+  // horizontal, across the diagonal, while the edges come closest at point 4,
+  // straight above it. Sliding along the floor, the body neither approaches
+  // nor leaves it: no contact. (With the lines' normal, the pair was touching
+  // and approaching at a rate of 1 / sqrt(2) along one of the two directions,
+  // reported at s = 0: a box resting on a floor of two triangles got a
+  // sideways kick at its first contact.)
+  const std::vector<TriangleIndices> triangles = {{{0, 1, 2}},
+                                                  {{0, 2, 3}},
+                                                  {{4, 5, 6}}};
+  const std::vector<unsigned int>    groups    = {0, 0, 1};
+  const std::vector<double>          q         = coordinates({{-1., -1., 0.},
+                                                              {1., -1., 0.},
+                                                              {1., 1., 0.},
+                                                              {-1., 1., 0.},
+                                                              {0., 0., 1e-6},
+                                                              {0., 0., 0.1},
+                                                              {-0.1, 0.05, 0.1}});
+  for (const Point3 &velocity : {Point3{{1., 0., 0.}}, Point3{{0., 1., 0.}}})
+    {
+      std::vector<double> v(q.size(), 0.);
+      for (unsigned int point = 4; point < 7; ++point)
+        for (unsigned int c = 0; c < 3; ++c)
+          v[3 * point + c] = velocity[c];
+      const auto hit = find_first_contact(
+        triangles, groups, q.data(), v.data(), q.size(), 0.1);
+      EXPECT_FALSE(hit.has_value())
+        << "sliding along (" << velocity[0] << ", " << velocity[1]
+        << ", 0): hit at s = " << hit->s << ", normal (" << hit->normal[0]
+        << ", " << hit->normal[1] << ", " << hit->normal[2] << ")";
+    }
+  // The pair's normal is that of its closest points, point 4 and its foot on
+  // the diagonal (the middle of the diagonal), with the weights there.
+  const FirstContact c =
+    contact_normal({{4, 5, 0, 2}}, true, q.data(), {{0., 0., 1.}});
+  EXPECT_NEAR(c.normal[2], 1., 1e-12);
+  EXPECT_EQ(c.weights[0], 1.);
+  EXPECT_EQ(c.weights[1], 0.);
+  EXPECT_NEAR(c.weights[2], -0.5, 1e-12);
+  EXPECT_NEAR(c.weights[3], -0.5, 1e-12);
+}
+
 TEST(FirstContact, KeptTreeGivesTheResultOfAFreshOne)
 {
   // Two spheres (a group each) approach, spinning, over 40 flights from

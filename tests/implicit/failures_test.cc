@@ -54,13 +54,16 @@ namespace
     return integrator;
   }
 
-  /** A ParameterHandler with the subsection Time integration (its Method
-   * and the implicit subsection), and @p text parsed inside it. */
+  /** A ParameterHandler with the subsection Time integration (its Method,
+   * the run's span and the implicit subsection), and @p text parsed inside
+   * it. */
   void
   parse(dealii::ParameterHandler &prm, const std::string &text)
   {
     prm.enter_subsection("Time integration");
     prm.declare_entry("Method", "ida bdf");
+    prm.declare_entry("Start time", "0");
+    prm.declare_entry("End time", "1");
     estep::declare_implicit_parameters(prm);
     prm.leave_subsection();
     prm.parse_input_from_string("subsection Time integration\n" + text +

@@ -19,7 +19,8 @@ namespace estep
    * @p system is the outermost decorator (the system the integrator sees),
    * @p bodies the system of the bodies themselves (an ElasticBody or a
    * ContactSystem), and @p to_bodies maps a state of @p system to a state of
-   * @p bodies (the identity, or the expansion of the supported points).
+   * @p bodies (the identity, or the expansion of the supported points);
+   * @p has_supports says whether supports hold points of the bodies.
    */
   class Scene : public SystemDecorator, public ElasticBodies
   {
@@ -34,7 +35,8 @@ namespace estep
     Scene(std::shared_ptr<const MechanicalSystem> system,
           std::shared_ptr<const ElasticBodies>    bodies,
           StateMap                                to_bodies,
-          const std::string                      &name);
+          const std::string                      &name,
+          const bool                              has_supports);
 
     /** The bodies' own system if they are in contact (a ContactSystem),
      * nullptr otherwise. */
@@ -81,6 +83,12 @@ namespace estep
     obstacle_surface(std::vector<double>       &points,
                      std::vector<unsigned int> &triangles) const override;
 
+    /** Whether nothing but the bodies themselves exchanges momentum with
+     * them: no supports, no obstacles (uniform gravity leaves their relative
+     * motion alone). */
+    bool
+    bodies_only_meet_each_other() const;
+
   private:
     std::function<unsigned int(const Vector &)> obstacle_count;
     std::vector<double>                         obstacle_points;
@@ -88,6 +96,7 @@ namespace estep
     std::shared_ptr<const ElasticBodies>        bodies;
     StateMap                                    to_bodies;
     std::string                                 scene_name;
+    bool                                        has_supports;
     mutable Vector                              q_bodies, v_bodies;
   };
 } // namespace estep

@@ -33,8 +33,11 @@ namespace estep
        * weights[k] * normal. Vertex-face: (1, -w0, -w1, -w2) with w the
        * barycentric coordinates of the orthogonal projection of p on the face
        * plane; edge-edge: (1 - a, a, -(1 - b), -b) with a, b the parameters of
-       * the closest points of the two lines. The weights sum to zero (no net
-       * force) and the lever arms are parallel to the normal (no net torque).
+       * the closest points of the two lines, or of the two edges where the
+       * lines' lie beyond an edge's end (the normal then along the difference
+       * of those points, unless it is within round-off). The weights sum to
+       * zero (no net force) and the lever arms are parallel to the normal (no
+       * net torque).
        */
       std::array<double, 4> weights = {{0., 0., 0., 0.}};
       /** Unit normal, oriented so that the distance grows when the first

@@ -42,13 +42,16 @@ namespace estep
       void(const Vector &q, const Vector &v, Vector &q_c, Vector &v_c)>;
 
     /** The monitor of @p system inside the integrated system, whose states
-     * @p to_contact maps to states of @p system. */
+     * @p to_contact maps to states of @p system; @p bodies_alone says
+     * whether nothing but the bodies exchanges momentum with them (no
+     * supports, no obstacles). */
     ContactMonitor(
       const ContactSystem                        &system,
       const TimeIntegrator                       &integrator,
       const Vector                               &q0,
       const Vector                               &v0,
       StateMap                                    to_contact,
+      bool                                        bodies_alone,
       std::function<unsigned int(const Vector &)> obstacle_count = nullptr);
 
     void
@@ -89,10 +92,11 @@ namespace estep
     bool
     contact_over() const;
 
-    /** restitution() once a collision is over (contact_over()). NaN
-     * otherwise: before a first contact, or while one may still go on, there
-     * is no collision to measure; and for a single body, whose contacts are
-     * with obstacles. */
+    /** restitution() once a collision of two bodies alone is over
+     * (contact_over()). NaN otherwise: before a first contact, or while one
+     * may still go on, there is no collision to measure; with one body, or
+     * more than two, or with supports or obstacles, restitution() measures
+     * no collision's restitution. */
     double
     collision_restitution(const Vector &q0,
                           const Vector &v0,
@@ -123,6 +127,12 @@ namespace estep
     double
     contact_duration() const;
 
+    /** The longer of the step that reached the first contact instant and the
+     * step after the last: how far the contact's start and end may lie from
+     * those instants. */
+    double
+    contact_duration_resolution() const;
+
   private:
     /** The current state of the integrator, in the coordinates of system. */
     void
@@ -131,6 +141,9 @@ namespace estep
     const ContactSystem  &system;
     const TimeIntegrator &integrator;
     StateMap              to_contact;
+    /** Two bodies that nothing else holds or touches: a collision whose
+     * restitution() the monitor reports. */
+    bool two_bodies_alone;
     /** Points of the integrated system's state inside obstacles (or
      * nullptr). */
     std::function<unsigned int(const Vector &)> obstacle_count;

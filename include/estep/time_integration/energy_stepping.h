@@ -103,6 +103,10 @@ namespace estep
      * (doc/spinning_cube.md). In its place, when no crossing has climbed or
      * descended and at least min_reflections_for_held_warning have reflected,
      * one saying that the motion is held between two levels (doc/scenes.md).
+     * And one when the run crossed no level at all although its forces at
+     * the start, acting from rest over that time, would have given it more
+     * than an energy step of kinetic energy: a flight along a level of V
+     * (released at rest, or moving sideways under gravity).
      */
     std::vector<std::string>
     warnings() const override;
@@ -176,6 +180,10 @@ namespace estep
     std::pair<double, double>
     slope_and_mass_norm(const Vector &g) const;
 
+    /** f . M^-1 f of the forces at q (one gradient, not counted: set-up). */
+    double
+    measure_force_mass_norm();
+
     /** v += lambda M^-1 g. */
     void
     add_impulse(const double lambda, const Vector &g);
@@ -184,9 +192,13 @@ namespace estep
     const double c;
     double       E_h0 = 0.;
     /** |T| + |V| at the start: the scale of the energies. */
-    double    energy_scale = 0.;
-    long long level        = 0;
-    Departure departure    = Departure::interior;
+    double energy_scale = 0.;
+    /** f . M^-1 f of the forces f = -grad V where the run started (or was
+     * resumed): from rest, such forces give a kinetic energy of (1/2) this
+     * s^2 in a time s. */
+    double    force_mass_norm = 0.;
+    long long level           = 0;
+    Departure departure       = Departure::interior;
     /** The last flight of positive length (0 before the first): twice it is
      * the next search's first window. */
     double last_flight = 0.;

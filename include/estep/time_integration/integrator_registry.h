@@ -39,6 +39,15 @@ namespace estep
   std::vector<std::string>
   ignored_integrator_settings(dealii::ParameterHandler &prm);
 
+  /** Throws, naming @p entry, unless the fixed time step @p time_step can be
+   * stepped through between the run's `Start time` and `End time` (read
+   * from the current subsection, `Time integration`): it must be at least
+   * their time_resolution(). */
+  void
+  require_resolvable_time_step(dealii::ParameterHandler &prm,
+                               const std::string        &entry,
+                               const double              time_step);
+
   /** The integrator chosen by `Method`, from the current subsection. */
   std::unique_ptr<TimeIntegrator>
   create_integrator(dealii::ParameterHandler &prm,

@@ -44,6 +44,12 @@ namespace estep
     penetrated
   };
 
+  /** The shortest span of time a run from @p start_time to @p end_time can
+   * be stepped through in floating point: about a million units of
+   * round-off of the run's largest time. */
+  double
+  time_resolution(const double start_time, const double end_time);
+
   /** Text of a status for output ("completed", "unstable", "stalled",
    * "failed", "interrupted", "penetrated"). */
   std::string
