@@ -1,31 +1,17 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <estep/app/run_parameters.h>
+#include <estep/base/exception_text.h>
 #include <estep/io/postprocessor.h>
 #include <estep/time_integration/integrator_registry.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
 {
-  namespace
-  {
-    /** @p x with six significant digits, for messages. */
-    std::string
-    number(const double x)
-    {
-      std::ostringstream text;
-      text << x;
-      return text.str();
-    }
-  } // namespace
-
-
-
   void
   RunParameters::declare_parameters(dealii::ParameterHandler &prm)
   {
@@ -151,21 +137,21 @@ namespace estep
     if (!(end_time > start_time))
       throw std::runtime_error(
         "Time integration/End time: must be larger than the start time (" +
-        number(start_time) + ").");
+        message_number(start_time) + ").");
     const double time_resolution = estep::time_resolution(start_time, end_time);
     if (end_time - start_time < time_resolution)
       throw std::runtime_error(
         "Time integration/End time: the time span " +
-        number(end_time - start_time) +
+        message_number(end_time - start_time) +
         " is below the resolution of floating-point times this far from 0 (" +
-        number(time_resolution) + "); shift the start time to 0.");
+        message_number(time_resolution) + "); shift the start time to 0.");
     const auto check_interval = [&](const char  *entry,
                                     const double interval,
                                     const double max_outputs) {
       if (interval > 0. && interval < time_resolution)
         throw std::runtime_error(std::string("Output/") + entry +
                                  ": below the resolution of the run's times (" +
-                                 number(time_resolution) + ").");
+                                 message_number(time_resolution) + ").");
       if (interval > 0. && (end_time - start_time) / interval > max_outputs)
         throw std::runtime_error(
           std::string("Output/") + entry + ": would write more than " +

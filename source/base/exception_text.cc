@@ -39,4 +39,15 @@ namespace estep
         }
     return collapsed;
   }
+
+
+
+  std::string
+  message_number(const double x, const int digits)
+  {
+    std::ostringstream text;
+    text.precision(digits);
+    text << x;
+    return text.str();
+  }
 } // namespace estep

@@ -1,9 +1,9 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/exception_text.h>
 #include <estep/materials/material_registry.h>
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace estep
@@ -39,15 +39,6 @@ namespace estep
 
   namespace
   {
-    std::string
-    number(const double x)
-    {
-      std::ostringstream text;
-      text.precision(10);
-      text << x;
-      return text.str();
-    }
-
     /**
      * Throws, naming @p what, unless the material's functions agree with each
      * other at a few stretches J: finite values, f' the derivative of f and
@@ -59,6 +50,9 @@ namespace estep
     void
     check_material(const Material &material, const std::string &what)
     {
+      // Ten digits: a derivative that fails the check may differ from its
+      // difference quotient in the sixth.
+      const auto number = [](const double x) { return message_number(x, 10); };
       const double c    = material.quadratic_modulus();
       const auto   fail = [&](const double J, const std::string &text) {
         throw std::runtime_error(what + ": at J = " + number(J) + ", " + text +

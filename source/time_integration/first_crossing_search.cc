@@ -1,9 +1,9 @@
+#include <estep/base/exception_text.h>
 #include <estep/time_integration/first_crossing_search.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <vector>
 
 namespace estep
@@ -11,15 +11,6 @@ namespace estep
   namespace
   {
     constexpr double epsilon = std::numeric_limits<double>::epsilon();
-
-    std::string
-    to_short_string(const double x)
-    {
-      std::ostringstream stream;
-      stream.precision(6);
-      stream << x;
-      return stream.str();
-    }
 
     /** A parameter interval [a, b] waiting to be examined, with f at its ends.
      */
@@ -184,7 +175,7 @@ namespace estep
           "between flush, coplanar faces), whatever the energy step");
       if (!(tolerance < 0.5 * (c1 - c0)))
         throw SearchStalled("the round-off band of V along the flight, " +
-                            to_short_string(tolerance) +
+                            message_number(tolerance) +
                             ", is not below half the energy step" +
                             step_below_round_off);
       // f = +infinity where the configuration is inadmissible (beyond the
@@ -243,7 +234,7 @@ namespace estep
                   std::to_string(max_intervals_examined) +
                   " intervals without deciding, the last at flight parameter "
                   "s = " +
-                  to_short_string(I.a) + ", " + to_short_string(I.b - I.a) +
+                  message_number(I.a) + ", " + message_number(I.b - I.a) +
                   " wide" + step_below_round_off);
               statistics.max_intervals_in_one_search =
                 std::max(statistics.max_intervals_in_one_search, n_examined);

@@ -14,6 +14,11 @@ namespace estep
    */
   std::string
   one_line_message(const std::exception &exception);
+
+  /** @p x as an error message gives a number: @p digits significant
+   * digits. */
+  std::string
+  message_number(const double x, const int digits = 6);
 } // namespace estep
 
 #endif
