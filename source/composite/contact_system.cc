@@ -541,6 +541,30 @@ namespace estep
 
 
 
+  std::vector<SparseNormal>
+  ContactSystem::touching_constraints(const Vector &q) const
+  {
+    std::vector<SparseNormal> normals;
+    if (contact_parameters.mode != ContactParameters::Mode::impenetrability)
+      return normals;
+    contact::CcdSettings settings;
+    settings.tolerance = contact_parameters.ccd_tolerance;
+    for (const contact::FirstContact &c :
+         contact::touching_contacts(ccd_tree, q.data(), q.size(), settings))
+      {
+        // The four points of a pair are distinct (pairs that share a vertex
+        // never touch).
+        SparseNormal &normal = normals.emplace_back();
+        for (unsigned int k = 0; k < 4; ++k)
+          for (unsigned int d = 0; d < 3; ++d)
+            normal.emplace_back(3 * c.points[k] + d,
+                                c.weights[k] * c.normal[d]);
+      }
+    return normals;
+  }
+
+
+
   std::vector<std::string>
   ContactSystem::observable_names() const
   {

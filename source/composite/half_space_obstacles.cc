@@ -588,6 +588,28 @@ namespace estep
 
 
 
+  std::vector<SparseNormal>
+  HalfSpaceObstacles::touching_constraints(const Vector &q) const
+  {
+    std::vector<SparseNormal> normals = base_system->touching_constraints(q);
+    if (obstacle_mode != Mode::impenetrability)
+      return normals;
+    for (const HalfSpace &plane : planes)
+      for (const unsigned int i : contact_points)
+        {
+          const double *x = q.data() + dim * i;
+          if (distance(x, plane, dim) < 4. * band(plane, max_abs(x, dim), dim))
+            {
+              SparseNormal &normal = normals.emplace_back();
+              for (unsigned int c = 0; c < dim; ++c)
+                normal.emplace_back(dim * i + c, plane.normal[c]);
+            }
+        }
+    return normals;
+  }
+
+
+
   void
   HalfSpaceObstacles::hessian(const Vector                 &q,
                               dealii::SparseMatrix<double> &H) const

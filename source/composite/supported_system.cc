@@ -149,6 +149,26 @@ namespace estep
 
 
 
+  std::vector<SparseNormal>
+  SupportedSystem::touching_constraints(const Vector &q) const
+  {
+    scatter(q, scratch_q);
+    std::vector<SparseNormal> normals;
+    for (const SparseNormal &normal :
+         base_system->touching_constraints(scratch_q))
+      {
+        SparseNormal free_part;
+        for (const auto &[dof, value] : normal)
+          if (reduced_dofs[dof] != invalid && value != 0.)
+            free_part.emplace_back(reduced_dofs[dof], value);
+        if (!free_part.empty())
+          normals.push_back(std::move(free_part));
+      }
+    return normals;
+  }
+
+
+
   const dealii::SparsityPattern &
   SupportedSystem::hessian_sparsity() const
   {

@@ -87,6 +87,14 @@ namespace estep
 
 
 
+  std::vector<SparseNormal>
+  SystemDecorator::touching_constraints(const Vector &q) const
+  {
+    return base_system->touching_constraints(q);
+  }
+
+
+
   bool
   SystemDecorator::has_constraints() const
   {

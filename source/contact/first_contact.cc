@@ -87,6 +87,87 @@ namespace estep
         return within(-c.weights[1], size) && within(-c.weights[2], size) &&
                within(-c.weights[3], size);
       }
+
+      /**
+       * The primitive queries of the candidate triangle pairs of @p tree
+       * whose boxes, swept over the flight q + s v, 0 <= s <= s_max, and
+       * enlarged by the tolerance, overlap: in the order of their keys,
+       * duplicates removed. @p max_q is set to the largest |q_i|.
+       */
+      std::vector<Query>
+      candidate_queries(BoundingVolumeHierarchy &tree,
+                        const double            *q,
+                        const double            *v,
+                        const std::size_t        n,
+                        const double             s_max,
+                        const CcdSettings       &settings,
+                        double                  &max_q)
+      {
+        const auto &triangles = tree.get_triangles();
+        max_q                 = 0.;
+        double max_v          = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          {
+            max_q = std::max(max_q, std::abs(q[i]));
+            max_v = std::max(max_v, std::abs(v[i]));
+          }
+        // Boxes enlarged by the tolerance: pairs that come within it are
+        // examined (the CCD may report them). The tree's topology may be an
+        // earlier flight's: it changes the order of the pairs, which the
+        // queries are sorted out of, not the pairs.
+        tree.refit_swept(q,
+                         v,
+                         n,
+                         s_max,
+                         settings.tolerance +
+                           8. * unit * (max_q + s_max * max_v));
+        std::vector<std::pair<unsigned int, unsigned int>> pairs;
+        tree.find_pairs(pairs);
+
+        std::vector<Query> queries;
+        for (const auto &[i, j] : pairs)
+          {
+            const TriangleIndices &Ti = triangles[i], &Tj = triangles[j];
+            const Point3 ni = unit_normal(q, Ti), nj = unit_normal(q, Tj);
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                queries.push_back({false, {{Ti[k], Tj[0], Tj[1], Tj[2]}}, nj});
+                queries.push_back({false, {{Tj[k], Ti[0], Ti[1], Ti[2]}}, ni});
+              }
+            const Point3 o = minus(nj, ni);
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                {
+                  std::array<unsigned int, 2> ea = {{Ti[a], Ti[(a + 1) % 3]}},
+                                              eb = {{Tj[b], Tj[(b + 1) % 3]}};
+                  if (ea[0] > ea[1])
+                    std::swap(ea[0], ea[1]);
+                  if (eb[0] > eb[1])
+                    std::swap(eb[0], eb[1]);
+                  queries.push_back({true, {{ea[0], ea[1], eb[0], eb[1]}}, o});
+                }
+          }
+        // In the order of their keys, and among equal keys (an edge pair that
+        // several triangle pairs give, each with its own orientation) of the
+        // bytes of their orientations (a total order, NaN included), so that
+        // the query kept below does not depend on the order of the pairs.
+        std::sort(queries.begin(),
+                  queries.end(),
+                  [](const Query &a, const Query &b) {
+                    return a.key() < b.key() ||
+                           (a.key() == b.key() &&
+                            std::memcmp(a.orientation.data(),
+                                        b.orientation.data(),
+                                        sizeof(a.orientation)) < 0);
+                  });
+        queries.erase(std::unique(queries.begin(),
+                                  queries.end(),
+                                  [](const Query &a, const Query &b) {
+                                    return a.key() == b.key();
+                                  }),
+                      queries.end());
+        return queries;
+      }
     } // namespace
 
 
@@ -249,65 +330,9 @@ namespace estep
       const auto &triangles = tree.get_triangles();
       if (triangles.empty())
         return std::nullopt;
-      double max_q = 0., max_v = 0.;
-      for (std::size_t i = 0; i < n; ++i)
-        {
-          max_q = std::max(max_q, std::abs(q[i]));
-          max_v = std::max(max_v, std::abs(v[i]));
-        }
-      // Boxes enlarged by the tolerance: pairs that come within it are
-      // examined (the CCD may report them). The tree's topology may be an
-      // earlier flight's: it changes the order of the pairs, which the
-      // queries are sorted out of, not the pairs.
-      tree.refit_swept(q,
-                       v,
-                       n,
-                       s_max,
-                       settings.tolerance +
-                         8. * unit * (max_q + s_max * max_v));
-      std::vector<std::pair<unsigned int, unsigned int>> pairs;
-      tree.find_pairs(pairs);
-
-      std::vector<Query> queries;
-      for (const auto &[i, j] : pairs)
-        {
-          const TriangleIndices &Ti = triangles[i], &Tj = triangles[j];
-          const Point3 ni = unit_normal(q, Ti), nj = unit_normal(q, Tj);
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              queries.push_back({false, {{Ti[k], Tj[0], Tj[1], Tj[2]}}, nj});
-              queries.push_back({false, {{Tj[k], Ti[0], Ti[1], Ti[2]}}, ni});
-            }
-          const Point3 o = minus(nj, ni);
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              {
-                std::array<unsigned int, 2> ea = {{Ti[a], Ti[(a + 1) % 3]}},
-                                            eb = {{Tj[b], Tj[(b + 1) % 3]}};
-                if (ea[0] > ea[1])
-                  std::swap(ea[0], ea[1]);
-                if (eb[0] > eb[1])
-                  std::swap(eb[0], eb[1]);
-                queries.push_back({true, {{ea[0], ea[1], eb[0], eb[1]}}, o});
-              }
-        }
-      // In the order of their keys, and among equal keys (an edge pair that
-      // several triangle pairs give, each with its own orientation) of the
-      // bytes of their orientations (a total order, NaN included), so that
-      // the query kept below does not depend on the order of the pairs.
-      std::sort(
-        queries.begin(), queries.end(), [](const Query &a, const Query &b) {
-          return a.key() < b.key() ||
-                 (a.key() == b.key() && std::memcmp(a.orientation.data(),
-                                                    b.orientation.data(),
-                                                    sizeof(a.orientation)) < 0);
-        });
-      queries.erase(std::unique(queries.begin(),
-                                queries.end(),
-                                [](const Query &a, const Query &b) {
-                                  return a.key() == b.key();
-                                }),
-                    queries.end());
+      double             max_q = 0.;
+      std::vector<Query> queries =
+        candidate_queries(tree, q, v, n, s_max, settings, max_q);
 
       const double touching = 2. * std::sqrt(3.) * settings.tolerance;
       // A distance below this may have the wrong sign by round-off.
@@ -391,6 +416,40 @@ namespace estep
                                       found->orientation);
       c.s            = best;
       return c;
+    }
+
+
+
+    std::vector<FirstContact>
+    touching_contacts(BoundingVolumeHierarchy &tree,
+                      const double            *q,
+                      const std::size_t        n,
+                      const CcdSettings       &settings)
+    {
+      std::vector<FirstContact> touching_pairs;
+      if (tree.get_triangles().empty())
+        return touching_pairs;
+      const std::vector<double> at_rest(n, 0.);
+      double                    max_q = 0.;
+      const std::vector<Query>  queries =
+        candidate_queries(tree, q, at_rest.data(), n, 0., settings, max_q);
+      const double touching          = 2. * std::sqrt(3.) * settings.tolerance;
+      const double distance_roundoff = 64. * unit * max_q;
+      for (const Query &query : queries)
+        {
+          FirstContact c =
+            contact_normal(query.points, query.edge_edge, q, query.orientation);
+          const double distance = distance_and_rate(c, q, at_rest.data()).first;
+          if (std::abs(distance) > touching ||
+              !closest_points_on_primitives(c, q, touching))
+            continue;
+          // The side of the pair, as find_first_contact() takes it.
+          if (distance < -distance_roundoff)
+            for (double &component : c.normal)
+              component = -component;
+          touching_pairs.push_back(c);
+        }
+      return touching_pairs;
     }
   } // namespace contact
 } // namespace estep

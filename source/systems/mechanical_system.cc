@@ -21,6 +21,14 @@ namespace estep
     return std::nullopt;
   }
 
+
+
+  std::vector<SparseNormal>
+  MechanicalSystem::touching_constraints(const Vector &) const
+  {
+    return {};
+  }
+
   bool
   MechanicalSystem::has_hessian() const
   {

@@ -4,6 +4,7 @@
 #include <estep/base/parameter_subsections.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/integrator_registry.h>
+#include <estep/time_integration/joint_reflection.h>
 
 #include <algorithm>
 #include <cmath>
@@ -214,9 +215,11 @@ namespace estep
     // The reflection leaves q where it is, so the flight still departs from
     // the level it sat on; if the new velocity carries it back through that
     // level at once (a crossing at s = 0), the jump there is made at this
-    // instant too. Contacts that the cap of reflections leaves still touching
-    // and approaching are beyond reflections one pair at a time: the run
-    // stalls there, with a message saying so.
+    // instant too. Contacts that hold each other (touching pairs that
+    // reflections one pair at a time keep turning towards each other) are
+    // reflected off all at once (joint_reflection_normal()); a contact still
+    // touching and approaching after the cap of reflections stalls the run
+    // there, with a message saying so.
     for (unsigned int k = 0;; ++k)
       {
         query.lower_level = level_height(level);
@@ -242,14 +245,25 @@ namespace estep
             std::ostringstream message;
             message << "Energy stepping stalled at t = " << t << ": after "
                     << max_simultaneous_events << " reflections at this "
-                    << "instant, one contact pair at a time, a pair still "
-                    << "touches and approaches: contacts that hold each other, "
-                    << "which reflections one pair at a time cannot part.";
+                    << "instant (the first " << reflections_one_pair_at_a_time
+                    << " off one contact pair at a time, the others off all "
+                    << "touching pairs at once), a pair still touches and "
+                    << "approaches.";
             throw StalledRun(message.str());
           }
         if (contact && contact->s == 0.)
           {
-            reflect(contact->normal);
+            if (k < reflections_one_pair_at_a_time)
+              reflect(contact->normal);
+            else
+              {
+                // Contacts that hold each other: part them all at once.
+                const Vector joint =
+                  joint_reflection_normal(system.touching_constraints(q),
+                                          v,
+                                          system.inverse_mass());
+                reflect(joint.linfty_norm() > 0. ? joint : contact->normal);
+              }
             ++n_constraint_events;
             continue;
           }

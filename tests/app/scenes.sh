@@ -20,6 +20,10 @@
 #   weight);
 # - two cubes meeting with flush faces, aligned and overlapping in part: kept apart by
 #   impenetrability; by penalty, stalled at once with the cause named;
+# - a slow stack: a cube landing flat on another at 0.01 m/s, their vertices aligned, whose
+#   touching pairs hold each other against reflections one at a time: by impenetrability,
+#   parted (reflections off all touching pairs at once), never intersecting, the terraced
+#   energy conserved;
 # - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
 #   on the same mesh (and the clamped vertices never move: the supports remove them);
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
@@ -505,6 +509,72 @@ rc=$?
 [[ $rc == 3 ]] || fail "flush faces by penalty: exit code $rc, expected 3 (stalled): $(tail -2 flush_penalty.log)"
 grep -q "the round-off of V along the flight has no finite bound" flush_penalty.log || fail "flush faces by penalty: $(tail -1 flush_penalty.log)"
 ! grep -q "try a larger Energy step" flush_penalty.log || fail "flush faces by penalty: advises a larger energy step"
+
+# A slow stack: the upper cube lands flat on the lower with its vertices on the lower's, so
+# slowly that the touching pairs hold each other: 1,000 reflections one pair at a time at one
+# instant (the cap) left a pair approaching. Reflections off all touching pairs at once part
+# them.
+cat > stack.prm <<'PRM'
+set Output directory = stack
+subsection Problem
+  set System = scene
+end
+subsection Scene
+  set Number of bodies = 2
+  subsection Body 1
+    subsection Mesh
+      set Subdivisions = 2
+      set Upper corner = 0.1, 0.1, 0.1
+    end
+    subsection Material
+      set Density = 1000
+      subsection Neo-Hookean
+        set Lambda = 2e6
+        set Mu     = 1e6
+      end
+    end
+  end
+  subsection Body 2
+    subsection Mesh
+      set Subdivisions = 2
+      set Upper corner = 0.1, 0.1, 0.1
+    end
+    subsection Material
+      set Density = 1000
+      subsection Neo-Hookean
+        set Lambda = 2e6
+        set Mu     = 1e6
+      end
+    end
+    subsection Placement
+      set Shift = 0, 0, 0.1005
+    end
+    subsection Initial velocity
+      set Translational velocity = 0, 0, -0.01
+    end
+  end
+end
+subsection Contact
+  set Mode = impenetrability
+end
+subsection Time integration
+  set End time = 0.1
+  subsection Energy stepping
+    set Energy step = 1e-6
+  end
+end
+PRM
+timeout 300 "$ESTEP" stack.prm > stack.log 2>&1 || fail "slow stack: $(tail -2 stack.log)"
+python3 - <<'PY' || fail "slow stack"
+import json
+s = json.load(open("stack/summary.json"))
+c = s["contact"]
+assert c["contact instants"] > 0, "no contact"
+assert c["largest number of intersecting face pairs"] == 0, c["largest number of intersecting face pairs"]
+assert c["last contact instant"] < 0.09, c["last contact instant"]
+e = s["energies"]
+assert e["terraced energy drift"] < 1e-12, e["terraced energy drift"]
+PY
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
 [[ $failures == 0 ]]

@@ -128,6 +128,11 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const override;
 
+    /** Impenetrability mode: the pairs of contact::touching_contacts(). None
+     * in the other modes. */
+    std::vector<SparseNormal>
+    touching_constraints(const Vector &q) const override;
+
     /** True in impenetrability mode. */
     bool
     has_constraints() const override;

@@ -143,6 +143,11 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const override;
 
+    /** The base's touching constraints, and in impenetrability mode every
+     * contact point within 4 touching bands of a plane, or behind it. */
+    std::vector<SparseNormal>
+    touching_constraints(const Vector &q) const override;
+
     /** True in impenetrability mode, and if the base has constraints. */
     bool
     has_constraints() const override;

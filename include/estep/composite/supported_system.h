@@ -84,6 +84,11 @@ namespace estep
                            const Vector &v,
                            const double  s_max) const override;
 
+    /** The base's touching constraints at expand(@p q), restricted to the
+     * free points; those of fixed points alone are left out. */
+    std::vector<SparseNormal>
+    touching_constraints(const Vector &q) const override;
+
     /** The free-free block of the base's Hessian pattern (n_dofs() square,
      * diagonal included). Throws std::logic_error if the base has no Hessian.
      */

@@ -53,6 +53,9 @@ namespace estep
     bool
     has_constraints() const override;
 
+    std::vector<SparseNormal>
+    touching_constraints(const Vector &q) const override;
+
     bool
     has_hessian() const override;
 

@@ -100,6 +100,21 @@ namespace estep
                        const CcdSettings       &settings = CcdSettings());
 
     /**
+     * Every primitive pair of @p tree's triangles touching at q (the rule of
+     * find_first_contact(): a distance of at most 2 sqrt(3) tolerance along
+     * the normal, the closest points on the primitives), whatever its
+     * velocity: the contacts that may hold each other at this instant. Each
+     * normal is turned to the side the pair lies on, so that the pair parts
+     * when its points move with a positive rate sum_k weights[k] normal .
+     * v_k. The tree's boxes are refitted to q.
+     */
+    std::vector<FirstContact>
+    touching_contacts(BoundingVolumeHierarchy &tree,
+                      const double            *q,
+                      const std::size_t        n,
+                      const CcdSettings       &settings = CcdSettings());
+
+    /**
      * The contact normal and weights (see FirstContact) of the primitive pair
      * @p points at the positions @p x (point i at x[3 i]); @p edge_edge
      * selects the kind. @p orientation is a direction the normal should have

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dealii
@@ -21,6 +22,10 @@ namespace estep
 {
   /** The vector type of configurations, velocities and gradients. */
   using Vector = dealii::Vector<double>;
+
+  /** A constraint's normal by its nonzero components: (coordinate, value),
+   * a coordinate at most once. */
+  using SparseNormal = std::vector<std::pair<unsigned int, double>>;
 
   /**
    * A constraint hit along a free flight (an energy step of infinite height).
@@ -92,6 +97,16 @@ namespace estep
     first_constraint_event(const Vector &q,
                            const Vector &v,
                            const double  s_max) const;
+
+    /**
+     * The normals of every constraint that touches at @p q, whether its
+     * points approach or part (several contact pairs at one instant), each
+     * turned so that a velocity w with normal . w > 0 parts it. Energy
+     * stepping reflects off all of them at once when reflections off one at
+     * a time do not part them. The default: none.
+     */
+    virtual std::vector<SparseNormal>
+    touching_constraints(const Vector &q) const;
 
     /** Whether first_constraint_event() can report events: an integrator
      * that does not ask for them cannot run the system. The default: false. */

@@ -171,6 +171,12 @@ namespace estep
      * and approaching after them stalls the run (StalledRun). */
     static constexpr unsigned int max_simultaneous_events = 1000;
 
+    /** The reflections at one instant off the contact pair that
+     * first_constraint_event() reports; after them, each reflection is off
+     * all the constraints touching (MechanicalSystem::touching_constraints()
+     * and joint_reflection_normal()). */
+    static constexpr unsigned int reflections_one_pair_at_a_time = 64;
+
     /** Reflect the velocity on a constraint @p normal. */
     void
     reflect(const Vector &normal);
