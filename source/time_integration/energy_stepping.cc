@@ -501,6 +501,10 @@ namespace estep
       {"descents", n_descents},
       {"reflections", n_reflections},
       {"constraint events", n_constraint_events},
+      // Levels reached without a jump: the flight touched the level and
+      // turned back (its slope through it was zero up to round-off).
+      {"touches without a jump",
+       n_gradients - n_climbs - n_descents - n_reflections},
       {"energy evaluations", search_statistics.n_value_evaluations},
       {"enclosures", search_statistics.n_enclosures},
       {"locating evaluations", search_statistics.n_locate_evaluations},

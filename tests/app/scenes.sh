@@ -24,6 +24,8 @@
 #   touching pairs hold each other against reflections one at a time: by impenetrability,
 #   parted (reflections off all touching pairs at once), never intersecting, the terraced
 #   energy conserved;
+# - a cube collapsing under its weight (its moduli given in Pa for MPa): stalled after 10,000
+#   steps in place, whose message says that nearly all were touches of a level without a jump;
 # - the cantilever: its first bending period by energy-stepping within 5 % of explicit Newmark's
 #   on the same mesh (and the clamped vertices never move: the supports remove them);
 # - the bar striking a wall: the contact lasts within 15 % of 2L/c and no vertex passes the wall
@@ -575,6 +577,53 @@ assert c["last contact instant"] < 0.09, c["last contact instant"]
 e = s["energies"]
 assert e["terraced energy drift"] < 1e-12, e["terraced energy drift"]
 PY
+
+# A cube of moduli a million times too small collapses under its weight: the flights end on a
+# level they cannot move through, and the stall's message says that nearly all its steps in
+# place were such touches.
+cat > soft.prm <<'PRM'
+set Output directory = soft
+subsection Problem
+  set System = scene
+end
+subsection Scene
+  set Gravity = 0, 0, -9.81
+  subsection Body 1
+    subsection Mesh
+      set Subdivisions = 2
+      set Lower corner = -0.05, -0.05, 0
+      set Upper corner = 0.05, 0.05, 0.1
+    end
+    subsection Material
+      set Density = 1000
+      subsection Neo-Hookean
+        set Lambda = 2
+        set Mu     = 1
+      end
+    end
+    subsection Initial velocity
+      set Translational velocity = 0, 0, -0.01
+    end
+    subsection Supports
+      set Region = z < 1e-6
+    end
+  end
+end
+subsection Contact
+  set Mode = none
+end
+subsection Time integration
+  set End time = 1
+  subsection Energy stepping
+    set Energy step = 1e-5
+  end
+end
+PRM
+timeout 300 "$ESTEP" soft.prm > soft.log 2>&1
+rc=$?
+[[ $rc == 3 ]] || fail "collapsing cube: exit code $rc, expected 3 (stalled): $(tail -1 soft.log)"
+touches=$(grep -o "touches without a jump +[0-9]*" soft.log | grep -o "[0-9]*$")
+[[ -n $touches && $touches -gt 9000 ]] || fail "collapsing cube: the stall does not name its touches: $(tail -1 soft.log)"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
 [[ $failures == 0 ]]
