@@ -88,6 +88,39 @@ namespace estep
                within(-c.weights[3], size);
       }
 
+      /** The rule of a pair touching at q. */
+      struct TouchingRule
+      {
+        /** Touching: a distance of at most this along the normal. */
+        double touching;
+        /** A distance below this may have the wrong sign by round-off. */
+        double distance_roundoff;
+
+        TouchingRule(const CcdSettings &settings, const double max_q)
+          : touching(2. * std::sqrt(3.) * settings.tolerance)
+          , distance_roundoff(64. * unit * max_q)
+        {}
+
+        /**
+         * 0 if the pair @p c at @p distance along its normal does not touch
+         * at @p x; else the side it lies on along the normal, +1 or -1: the
+         * sign of its distance. The orientation of the normal only guesses
+         * the side (the outward normals of one face pair, which at an edge of
+         * two faces can point the wrong way), and decides only a distance
+         * within round-off.
+         */
+        int
+        side(const FirstContact &c,
+             const double        distance,
+             const double       *x) const
+        {
+          if (std::abs(distance) > touching ||
+              !closest_points_on_primitives(c, x, touching))
+            return 0;
+          return distance < -distance_roundoff ? -1 : 1;
+        }
+      };
+
       /**
        * The primitive queries of the candidate triangle pairs of @p tree
        * whose boxes, swept over the flight q + s v, 0 <= s <= s_max, and
@@ -334,27 +367,20 @@ namespace estep
       std::vector<Query> queries =
         candidate_queries(tree, q, v, n, s_max, settings, max_q);
 
-      const double touching = 2. * std::sqrt(3.) * settings.tolerance;
-      // A distance below this may have the wrong sign by round-off.
-      const double distance_roundoff = 64. * unit * max_q;
-      double       best              = s_max;
-      const Query *found             = nullptr;
+      const TouchingRule rule(settings, max_q);
+      double             best  = s_max;
+      const Query       *found = nullptr;
       for (const Query &query : queries)
         {
           const FirstContact start =
             contact_normal(query.points, query.edge_edge, q, query.orientation);
           const auto [distance, rate] = distance_and_rate(start, q, v);
-          double s0                   = 0.;
-          if (std::abs(distance) <= touching &&
-              closest_points_on_primitives(start, q, touching))
+          double    s0                = 0.;
+          const int side              = rule.side(start, distance, q);
+          if (side != 0)
             {
-              // The rate at which the pair parts. The side of the pair is the
-              // sign of its distance: the orientation only guesses it (the
-              // outward normals of one face pair, which at an edge of two
-              // faces can point the wrong way), and decides only a distance
-              // within round-off.
-              const double parting =
-                distance < -distance_roundoff ? -rate : rate;
+              // The rate at which the pair parts, on its side.
+              const double parting = side * rate;
               if (parting < 0.)
                 {
                   // Touching and approaching: a contact now.
@@ -433,20 +459,17 @@ namespace estep
       double                    max_q = 0.;
       const std::vector<Query>  queries =
         candidate_queries(tree, q, at_rest.data(), n, 0., settings, max_q);
-      const double touching          = 2. * std::sqrt(3.) * settings.tolerance;
-      const double distance_roundoff = 64. * unit * max_q;
+      const TouchingRule rule(settings, max_q);
       for (const Query &query : queries)
         {
           FirstContact c =
             contact_normal(query.points, query.edge_edge, q, query.orientation);
-          const double distance = distance_and_rate(c, q, at_rest.data()).first;
-          if (std::abs(distance) > touching ||
-              !closest_points_on_primitives(c, q, touching))
+          const int side =
+            rule.side(c, distance_and_rate(c, q, at_rest.data()).first, q);
+          if (side == 0)
             continue;
-          // The side of the pair, as find_first_contact() takes it.
-          if (distance < -distance_roundoff)
-            for (double &component : c.normal)
-              component = -component;
+          for (double &component : c.normal)
+            component *= side;
           touching_pairs.push_back(c);
         }
       return touching_pairs;
