@@ -98,6 +98,25 @@ namespace estep
              "'Additional shared libraries' adds your own.\n";
     }
 
+    /** @p error, with a hint where it rejects a name that is not among the
+     * registered plugins of an extension point (its Selection or
+     * MultipleSelection pattern lists them): the plugins of a library of
+     * one's own need that library loaded. */
+    std::string
+    with_plugin_hint(const std::string &error)
+    {
+      for (const std::string &names : {problem_registry().names(),
+                                       material_registry().names(),
+                                       integrator_registry().names(),
+                                       postprocessor_registry().names()})
+        if (error.find("Selection " + names + " ]") != std::string::npos)
+          return error.substr(0, error.find_last_not_of('.') + 1) +
+                 ". A plugin of your own is known by its name once "
+                 "'Additional shared libraries' names its library (estep "
+                 "--help lists the plugins registered).";
+      return error;
+    }
+
     /** The number of processes an MPI launcher (Open MPI's or MPICH's
      * mpirun) started this one among, from its environment (1 without a
      * launcher), and this one's rank among them. */
@@ -1133,7 +1152,7 @@ namespace estep
     // reported by the first. One a process met alone leaves the others
     // waiting for it in a collective call: it reports it itself (the
     // other processes' std::cerr is silent) and ends them all.
-    const std::string line = "estep: error: " + error + "\n";
+    const std::string line = "estep: error: " + with_plugin_hint(error) + "\n";
     if (!every_rank_arrives_within(10.))
       {
         std::fputs(line.c_str(), stderr);

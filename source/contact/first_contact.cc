@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
 
 namespace estep
 {
@@ -34,12 +34,6 @@ namespace estep
         bool                        edge_edge;
         std::array<unsigned int, 4> points;
         Point3                      orientation;
-
-        std::tuple<bool, unsigned int, unsigned int, unsigned int, unsigned int>
-        key() const
-        {
-          return {edge_edge, points[0], points[1], points[2], points[3]};
-        }
       };
 
       // Distance and its rate along the flight for the normal of c at x.
@@ -53,6 +47,25 @@ namespace estep
             r += c.weights[k] * dot(c.normal, point_at(v, c.points[k]));
           }
         return {d, r};
+      }
+
+      /**
+       * A bound of the round-off of the rate of @p c at the velocities
+       * @p v, and of the smallest change of it that a change of v can make
+       * (the last bits of v's components): a rate within it cannot be told
+       * from zero, nor reflected.
+       */
+      double
+      rate_roundoff(const FirstContact &c, const double *v)
+      {
+        double magnitude = 0.;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            const Point3 vk = point_at(v, c.points[k]);
+            for (unsigned int i = 0; i < 3; ++i)
+              magnitude += std::abs(c.weights[k] * c.normal[i] * vk[i]);
+          }
+        return 64. * unit * magnitude;
       }
 
       /**
@@ -88,6 +101,13 @@ namespace estep
                within(-c.weights[3], size);
       }
 
+      /** Touching: a distance of at most this along the normal. */
+      double
+      touching_distance(const CcdSettings &settings)
+      {
+        return 2. * std::sqrt(3.) * settings.tolerance;
+      }
+
       /** The rule of a pair touching at q. */
       struct TouchingRule
       {
@@ -97,7 +117,7 @@ namespace estep
         double distance_roundoff;
 
         TouchingRule(const CcdSettings &settings, const double max_q)
-          : touching(2. * std::sqrt(3.) * settings.tolerance)
+          : touching(touching_distance(settings))
           , distance_roundoff(64. * unit * max_q)
         {}
 
@@ -124,7 +144,7 @@ namespace estep
       /**
        * The primitive queries of the candidate triangle pairs of @p tree
        * whose boxes, swept over the flight q + s v, 0 <= s <= s_max, and
-       * enlarged by the tolerance, overlap: in the order of their keys,
+       * enlarged by @p margin, overlap: in the order of their keys,
        * duplicates removed. @p max_q is set to the largest |q_i|.
        */
       std::vector<Query>
@@ -133,7 +153,7 @@ namespace estep
                         const double            *v,
                         const std::size_t        n,
                         const double             s_max,
-                        const CcdSettings       &settings,
+                        const double             margin,
                         double                  &max_q)
       {
         const auto &triangles = tree.get_triangles();
@@ -144,20 +164,17 @@ namespace estep
             max_q = std::max(max_q, std::abs(q[i]));
             max_v = std::max(max_v, std::abs(v[i]));
           }
-        // Boxes enlarged by the tolerance: pairs that come within it are
-        // examined (the CCD may report them). The tree's topology may be an
-        // earlier flight's: it changes the order of the pairs, which the
-        // queries are sorted out of, not the pairs.
-        tree.refit_swept(q,
-                         v,
-                         n,
-                         s_max,
-                         settings.tolerance +
-                           8. * unit * (max_q + s_max * max_v));
+        // Boxes enlarged by the margin: pairs that come within it are
+        // examined. The tree's topology may be an earlier flight's: it
+        // changes the order of the pairs, which the queries are sorted out
+        // of, not the pairs.
+        tree.refit_swept(
+          q, v, n, s_max, margin + 8. * unit * (max_q + s_max * max_v));
         std::vector<std::pair<unsigned int, unsigned int>> pairs;
         tree.find_pairs(pairs);
 
         std::vector<Query> queries;
+        queries.reserve(15 * pairs.size());
         for (const auto &[i, j] : pairs)
           {
             const TriangleIndices &Ti = triangles[i], &Tj = triangles[j];
@@ -180,26 +197,47 @@ namespace estep
                   queries.push_back({true, {{ea[0], ea[1], eb[0], eb[1]}}, o});
                 }
           }
-        // In the order of their keys, and among equal keys (an edge pair that
-        // several triangle pairs give, each with its own orientation) of the
-        // bytes of their orientations (a total order, NaN included), so that
-        // the query kept below does not depend on the order of the pairs.
-        std::sort(queries.begin(),
-                  queries.end(),
-                  [](const Query &a, const Query &b) {
-                    return a.key() < b.key() ||
-                           (a.key() == b.key() &&
-                            std::memcmp(a.orientation.data(),
-                                        b.orientation.data(),
-                                        sizeof(a.orientation)) < 0);
+        // Each query once, in the order of its key, and among equal keys (an
+        // edge pair that several triangle pairs give, each with its own
+        // orientation) the one whose orientation's bytes come first (a total
+        // order, NaN included), so that the query kept does not depend on the
+        // order of the pairs. The keys are sorted packed into two words: a
+        // point's index is below 2^31, since its coordinates' indices 3 i + c
+        // are unsigned ints.
+        struct PackedKey
+        {
+          std::uint64_t high, low;
+          std::uint32_t query;
+        };
+        std::vector<PackedKey> keys(queries.size());
+        for (std::size_t k = 0; k < queries.size(); ++k)
+          {
+            const Query &x = queries[k];
+            keys[k]        = {(std::uint64_t{x.edge_edge} << 62) |
+                                (std::uint64_t{x.points[0]} << 31) | x.points[1],
+                              (std::uint64_t{x.points[2]} << 31) | x.points[3],
+                              static_cast<std::uint32_t>(k)};
+          }
+        std::sort(keys.begin(),
+                  keys.end(),
+                  [](const PackedKey &a, const PackedKey &b) {
+                    return a.high < b.high ||
+                           (a.high == b.high && a.low < b.low);
                   });
-        queries.erase(std::unique(queries.begin(),
-                                  queries.end(),
-                                  [](const Query &a, const Query &b) {
-                                    return a.key() == b.key();
-                                  }),
-                      queries.end());
-        return queries;
+        std::vector<Query> distinct;
+        for (std::size_t a = 0, b = 0; a < keys.size(); a = b)
+          {
+            std::uint32_t kept = keys[a].query;
+            for (b = a + 1; b < keys.size() && keys[b].high == keys[a].high &&
+                            keys[b].low == keys[a].low;
+                 ++b)
+              if (std::memcmp(queries[keys[b].query].orientation.data(),
+                              queries[kept].orientation.data(),
+                              sizeof(Point3)) < 0)
+                kept = keys[b].query;
+            distinct.push_back(queries[kept]);
+          }
+        return distinct;
       }
     } // namespace
 
@@ -365,7 +403,7 @@ namespace estep
         return std::nullopt;
       double             max_q = 0.;
       std::vector<Query> queries =
-        candidate_queries(tree, q, v, n, s_max, settings, max_q);
+        candidate_queries(tree, q, v, n, s_max, settings.tolerance, max_q);
 
       const TouchingRule rule(settings, max_q);
       double             best  = s_max;
@@ -381,14 +419,16 @@ namespace estep
             {
               // The rate at which the pair parts, on its side.
               const double parting = side * rate;
-              if (parting < 0.)
+              const double held    = rate_roundoff(start, v);
+              if (parting < -held)
                 {
                   // Touching and approaching: a contact now.
                   best  = 0.;
                   found = &query;
                   break;
                 }
-              if (parting == 0.)
+              // Held, up to round-off: it does not move along its normal.
+              if (parting <= held)
                 continue;
               s0 = 8. * settings.tolerance / parting;
             }
@@ -456,9 +496,9 @@ namespace estep
       if (tree.get_triangles().empty())
         return touching_pairs;
       const std::vector<double> at_rest(n, 0.);
-      double                    max_q = 0.;
-      const std::vector<Query>  queries =
-        candidate_queries(tree, q, at_rest.data(), n, 0., settings, max_q);
+      double                    max_q   = 0.;
+      const std::vector<Query>  queries = candidate_queries(
+        tree, q, at_rest.data(), n, 0., touching_distance(settings), max_q);
       const TouchingRule rule(settings, max_q);
       for (const Query &query : queries)
         {

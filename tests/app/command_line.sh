@@ -200,10 +200,15 @@ expect 1 "Line <2> of file <malformed.xml>: not valid XML: expected >" -- malfor
 printf 'set Output directory = run\nsubsection Time integration\n  set Energy step = 1e-3\nend\n' > renamed.prm
 expect 1 "Line <3> of file <renamed.prm>: Time integration/Energy step is now Time integration/Energy stepping/Energy step\.$" -- renamed.prm
 expect 1 "Output/Field output interval is now Postprocessors/Field output/Interval, with field output in Postprocessors/List" -- run.prm -s "Output/Field output interval=1"
-# An unknown plugin: one line with the valid names.
-expect 1 "<leapfrog> does not match the given pattern <\[Selection arkode irk\|arkode midpoint\|energy momentum\|energy stepping\|explicit newmark\|ida bdf \]>" -- run.prm -s "Time integration/Method=leapfrog"
-expect 1 "<sponge>.*\[Selection neo-Hookean" -- run.prm -s "Material/Model=sponge"
-expect 1 "<history, spreadsheet>.*MultipleSelection contact monitor" -- run.prm -s "Postprocessors/List=history, spreadsheet"
+# An unknown plugin: one line with the valid names, and where a plugin of one's own comes from
+# (not for other choices).
+hint="A plugin of your own is known by its name once 'Additional shared libraries' names its library"
+expect 1 "<leapfrog> does not match the given pattern <\[Selection arkode irk\|arkode midpoint\|energy momentum\|energy stepping\|explicit newmark\|ida bdf \]>\. $hint" -- run.prm -s "Time integration/Method=leapfrog"
+expect 1 "<sponge>.*\[Selection neo-Hookean.*$hint" -- run.prm -s "Material/Model=sponge"
+expect 1 "<history, spreadsheet>.*MultipleSelection contact monitor.*$hint" -- run.prm -s "Postprocessors/List=history, spreadsheet"
+printf 'subsection Problem\n  set System = my system\nend\n' > my_system.prm
+expect 1 "Line <2> of file <my_system.prm>: .*my system.*\[Selection argon cluster.*$hint" -- my_system.prm
+expect 1 "<foo> does not match the given pattern <\[Selection none\|penalty\|impenetrability \]>\.$" -- run.prm -s "Contact/Mode=foo"
 expect 1 "Postprocessors/List: <history> is listed twice" -- run.prm -s "Postprocessors/List=history, history"
 # Plugin libraries: a missing one, one that registers a name taken already, one that registers
 # nothing.

@@ -143,6 +143,89 @@ TEST(FirstContact, TouchingPairsApproachOrSeparate)
     }
 }
 
+TEST(FirstContact, TouchingPairsApproachingWithinRoundOffAreHeld)
+{
+  // A vertex of triangle 1 on the face of triangle 0, everything moving
+  // together at (0.3, 1, 0.7): the pair's rate is round-off, which no
+  // reflection could change (the velocities' last bits are larger), so the
+  // pair is held, not a contact now, even where the round-off is negative.
+  // A real approach, the vertex slower by 1e-9 along the normal, is one.
+  Scene scene(0.);
+  scene.triangles[0]                                  = {{0, 2, 1}};
+  const std::array<unsigned int, 4> points            = {{3, 0, 2, 1}};
+  unsigned int                      negative_roundoff = 0;
+  for (unsigned int i = 1; i < 40; ++i)
+    {
+      const double x = 0.0123 * i, z = 0.0371 * i;
+      scene.q = coordinates({{0., 0., 0.},
+                             {1., 0., 0.},
+                             {0., 0., 3.},
+                             {x, 0., z},
+                             {x, 1., z},
+                             {x + 0.2, 1., z + 0.5}});
+      for (unsigned int point = 0; point < 6; ++point)
+        {
+          scene.v[3 * point]     = 0.3;
+          scene.v[3 * point + 1] = 1.;
+          scene.v[3 * point + 2] = 0.7;
+        }
+      // The rate as the search computes it.
+      const FirstContact c =
+        contact_normal(points, false, scene.q.data(), {{0., 1., 0.}});
+      double rate = 0.;
+      for (unsigned int k = 0; k < 4; ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          rate += c.weights[k] * c.normal[d] * scene.v[3 * points[k] + d];
+      negative_roundoff += rate < 0.;
+      const auto held = scene.first_contact(1.);
+      EXPECT_FALSE(held.has_value()) << "x = " << x << ", rate " << rate;
+
+      scene.v[3 * 3 + 1] = 1. - 1e-9;
+      const auto hit     = scene.first_contact(1.);
+      ASSERT_TRUE(hit.has_value()) << "x = " << x;
+      EXPECT_EQ(hit->s, 0.);
+      EXPECT_EQ(hit->points, points);
+    }
+  EXPECT_GT(negative_roundoff, 0u);
+}
+
+TEST(FirstContact, TouchingContactsIncludePairsAtTheTouchingDistance)
+{
+  // Triangle 1 parallel to triangle 0, 3 tolerances above it: farther than
+  // the tolerance that enlarges the boxes of the search's broad phase on
+  // each side, within the touching distance 2 sqrt(3) tolerance. Its three
+  // vertices touch triangle 0's face; an approach is a contact now, and its
+  // pair is among the touching ones.
+  const CcdSettings               settings;
+  const double                    gap       = 3. * settings.tolerance;
+  std::vector<TriangleIndices>    triangles = {{{0, 2, 1}}, {{3, 4, 5}}};
+  const std::vector<double>       q         = coordinates({{0., 0., 0.},
+                                                           {1., 0., 0.},
+                                                           {0., 0., 3.},
+                                                           {0.1, gap, 0.1},
+                                                           {0.1, gap, 0.6},
+                                                           {0.4, gap, 0.3}});
+  BoundingVolumeHierarchy         tree(triangles, {0u, 1u});
+  const std::vector<FirstContact> touching =
+    touching_contacts(tree, q.data(), q.size(), settings);
+  unsigned int vertices_on_the_face = 0;
+  for (const FirstContact &c : touching)
+    vertices_on_the_face += !c.edge_edge && c.points[0] >= 3;
+  EXPECT_EQ(vertices_on_the_face, 3u);
+
+  std::vector<double> v(q.size(), 0.);
+  for (unsigned int point = 3; point < 6; ++point)
+    v[3 * point + 1] = -1.;
+  const auto hit =
+    find_first_contact(tree, q.data(), v.data(), q.size(), 1., settings);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->s, 0.);
+  EXPECT_TRUE(
+    std::any_of(touching.begin(), touching.end(), [&](const FirstContact &c) {
+      return c.points == hit->points && c.edge_edge == hit->edge_edge;
+    }));
+}
+
 TEST(FirstContact, EdgeStandingOnAnEdgeEndOnHasTheNormalOfItsEnd)
 {
   // A flat floor of two triangles (points 0-3, z = 0) that share the diagonal

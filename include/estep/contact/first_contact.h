@@ -60,15 +60,18 @@ namespace estep
      * steps right after a reflection): a primitive pair whose distance at s =
      * 0 is at most 2 sqrt(3) tolerance (along the normal, with the closest
      * points on the primitives themselves, not beyond an edge's end or a
-     * face's boundary) and whose parting rate is >= 0 is separating; it is
-     * ignored on [0, s1] with s1 = 8 tolerance / rate and examined by the CCD
-     * on [s1, s_max]. The parting rate is the distance rate (gradient . v)
-     * with the sign of the pair's side, the sign of its distance: the
+     * face's boundary) and whose parting rate is positive is separating; it
+     * is ignored on [0, s1] with s1 = 8 tolerance / rate and examined by the
+     * CCD on [s1, s_max]. The parting rate is the distance rate (gradient .
+     * v) with the sign of the pair's side, the sign of its distance: the
      * orientation of the normal, taken from one pair of faces, can be wrong
      * at an edge of two faces, and decides only a distance within round-off.
-     * A pair that touches at s = 0 and approaches (parting rate < 0) is
+     * A pair that touches at s = 0 and approaches (parting rate negative) is
      * reported at s = 0 (several simultaneous contacts are then resolved one
-     * by one).
+     * by one). A rate within 64 units of round-off of sum_k |weights[k]
+     * normal_i v_k,i| is neither: the pair is held and ignored for the flight
+     * (no reflection could change a rate below the last bits of the
+     * velocities).
      *
      * Returns nothing if no contact occurs on [0, s_max].
      */
@@ -103,7 +106,10 @@ namespace estep
      * Every primitive pair of @p tree's triangles touching at q (the rule of
      * find_first_contact(): a distance of at most 2 sqrt(3) tolerance along
      * the normal, the closest points on the primitives), whatever its
-     * velocity: the contacts that may hold each other at this instant. Each
+     * velocity: the contacts that may hold each other at this instant, every
+     * pair that find_first_contact() may report at s = 0 among them (the
+     * boxes of its broad phase are enlarged by the touching distance, not
+     * the tolerance). Each
      * normal is turned to the side the pair lies on, so that the pair parts
      * when its points move with a positive rate sum_k weights[k] normal .
      * v_k. The tree's boxes are refitted to q.
