@@ -334,6 +334,18 @@ namespace estep
     system.gradient(q, gradient_buffer);
     ++n_gradients;
     const auto [a, m] = slope_and_mass_norm(gradient_buffer);
+    if (!std::isfinite(a) || !std::isfinite(m))
+      {
+        // The flight ended on a level where, to round-off, the configuration
+        // is no longer admissible (a cell at the edge of inversion).
+        std::ostringstream message;
+        message << "The configuration became inadmissible at t = " << t
+                << ": its potential energy is " << system.energy(q)
+                << " and its gradient is not finite (an element inverted or "
+                   "degenerated, e.g. a material too soft for the loads on "
+                   "it).";
+        throw UnstableRun(message.str());
+      }
 
     double lambda = 0.;
     if (direction > 0)
