@@ -200,10 +200,7 @@ namespace estep
               if (set.empty())
                 break;
             }
-          u = 0.;
-          for (const std::size_t k : set)
-            for (const auto &[i, value] : normals[k])
-              u[i] += x[k] * inverse_mass[i] * value;
+          u = combination(normals, x, u.size(), &inverse_mass);
         }
       return x;
     }
