@@ -13,6 +13,7 @@
 #include <estep/base/config.h>
 #include <estep/base/distributed_blocks.h>
 #include <estep/base/exception_text.h>
+#include <estep/base/interruption.h>
 #include <estep/base/lanes.h>
 #include <estep/base/mpi_session.h>
 #include <estep/fem/elastic_bodies.h>

@@ -1,4 +1,5 @@
 #include <estep/base/exception_text.h>
+#include <estep/base/interruption.h>
 #include <estep/time_integration/first_crossing_search.h>
 
 #include <algorithm>
@@ -228,7 +229,9 @@ namespace estep
             {
               const PendingInterval I = pending.back();
               pending.pop_back();
-              if (++n_examined > max_intervals_examined)
+              if (++n_examined % intervals_between_interruption_polls == 0)
+                abandon_step_if_interrupted();
+              if (n_examined > max_intervals_examined)
                 throw SearchStalled(
                   "the first-crossing search examined " +
                   std::to_string(max_intervals_examined) +

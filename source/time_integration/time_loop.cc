@@ -1,10 +1,9 @@
-#include <estep/base/distributed_blocks.h>
+#include <estep/base/interruption.h>
 #include <estep/time_integration/time_loop.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -56,9 +55,6 @@ namespace estep
 
   namespace
   {
-    /** Set by request_interruption(), read by the time loop. */
-    volatile std::sig_atomic_t interruption = 0;
-
     /** Steps in a row that leave the time where it is before the run is
      * declared stalled (events at one instant are legitimate, a few). */
     constexpr unsigned int max_steps_in_place = 10000;
@@ -108,14 +104,6 @@ namespace estep
       return message.str();
     }
   } // namespace
-
-
-
-  void
-  request_interruption(const int signal) noexcept
-  {
-    interruption = signal;
-  }
 
 
 
@@ -312,6 +300,15 @@ namespace estep
         settings.write_checkpoint(state);
         last_checkpoint = Clock::now();
       };
+      const auto end_interrupted = [&](const int          signal,
+                                       const std::string &where) {
+        result.status = RunStatus::interrupted;
+        result.signal = signal;
+        std::ostringstream message;
+        message << "Interrupted by signal " << signal
+                << " at t = " << integrator.time() << where << ".";
+        result.message = message.str();
+      };
       const auto checkpoint_due = [&]() {
         if (!settings.write_checkpoint)
           return false;
@@ -334,7 +331,17 @@ namespace estep
             {
               const double        t_before     = integrator.time();
               const std::uint64_t steps_before = integrator.n_steps();
-              integrator.step(t_end);
+              try
+                {
+                  integrator.step(t_end);
+                }
+              catch (const StepInterrupted &abandoned)
+                {
+                  end_interrupted(abandoned.signal,
+                                  " (in the middle of a step, "
+                                  "which was abandoned)");
+                  break;
+                }
               check_step_rules(integrator, t_before, steps_before, t_end);
               state.steps_in_place =
                 (integrator.time() > t_before) ? 0 : state.steps_in_place + 1;
@@ -388,15 +395,9 @@ namespace estep
               emit_outputs_until(integrator.time());
               // On several MPI ranks, a signal that reached one of them ends
               // the run on all, after the same step.
-              if (const int signal = largest_over_ranks(interruption);
-                  signal != 0)
+              if (const int signal = requested_interruption(); signal != 0)
                 {
-                  result.status = RunStatus::interrupted;
-                  result.signal = signal;
-                  std::ostringstream message;
-                  message << "Interrupted by signal " << result.signal
-                          << " at t = " << integrator.time() << ".";
-                  result.message = message.str();
+                  end_interrupted(signal, "");
                   break;
                 }
               if (integrator.time() < t_end && checkpoint_due())

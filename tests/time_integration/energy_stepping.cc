@@ -1,5 +1,6 @@
 // Energy-stepping: exact conservation, time reversibility, convergence to the
 // exact motion, and no level ever stepped over along a real system's flights.
+#include <estep/base/interruption.h>
 #include <estep/systems/lennard_jones_cluster.h>
 #include <estep/time_integration/energy_stepping.h>
 #include <estep/time_integration/time_loop.h>
@@ -485,5 +486,47 @@ namespace
               "The run stalled at t = 0.6: 10000 steps in a row did not "
               "advance the time (rule breaker, the last 9999 of them: steps "
               "+9999 waits +9999).");
+  }
+
+  /** The oscillator at rest on a level (V = 0), with flights whose
+   * enclosures prove nothing: the first search crawls, and a signal arrives
+   * at its 3000th enclosure. */
+  class CrawlingOscillator : public Oscillator
+  {
+  public:
+    std::unique_ptr<FreeFlight>
+    free_flight(const Vector &, const Vector &) const override
+    {
+      return std::make_unique<estep::testing::UselessEnclosureFlight>(
+        0., [](const std::uint64_t n) {
+          if (n == 3000)
+            request_interruption(15);
+        });
+    }
+  };
+
+  TEST(TimeLoop, ASignalDuringACrawlingSearchEndsTheRunWithACheckpoint)
+  {
+    const CrawlingOscillator crawling;
+    Vector                   q0(2), v0(2);
+    v0[0] = 1.;
+    EnergyStepping stepping(crawling, 1.);
+    stepping.initialize(0., q0, v0);
+    unsigned int     checkpoints = 0;
+    TimeLoopSettings settings;
+    settings.end_time           = 1.;
+    settings.write_checkpoint   = [&](const TimeLoopState &) { ++checkpoints; };
+    const TimeLoopResult result = run_time_loop(stepping, settings, {});
+    request_interruption(0);
+    EXPECT_EQ(result.status, RunStatus::interrupted);
+    EXPECT_EQ(result.signal, 15);
+    EXPECT_EQ(result.message,
+              "Interrupted by signal 15 at t = 0 (in the middle of a step, "
+              "which was abandoned).");
+    // The state is the one the abandoned step started from.
+    EXPECT_EQ(stepping.n_steps(), 0u);
+    EXPECT_EQ(stepping.time(), 0.);
+    EXPECT_EQ(stepping.velocity()[0], 1.);
+    EXPECT_EQ(checkpoints, 1u);
   }
 } // namespace

@@ -1,4 +1,5 @@
 // The certified first-crossing search on functions built to defeat sampling.
+#include <estep/base/interruption.h>
 #include <estep/time_integration/first_crossing_search.h>
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@ namespace
   using namespace estep;
   using estep::testing::BumpFlight;
   using estep::testing::PolynomialFlight;
+  using estep::testing::UselessEnclosureFlight;
 
   CrossingQuery
   query(const double    lower,
@@ -241,47 +243,48 @@ namespace
     EXPECT_NEAR(crossing.s, 0.5, 0.1);
   }
 
-  /** f = 0, on its departure level, with enclosures that prove nothing
-   * (they are wider than the band and give f' no sign) and claim no
-   * round-off: every interval near s = 0 is bisected to the resolution. */
-  class UselessEnclosureFlight : public FreeFlight
-  {
-  public:
-    double
-    value(const double) const override
-    {
-      return 0.;
-    }
-
-    LineValue
-    value_and_derivative(const double) const override
-    {
-      return {0., 0.};
-    }
-
-    LineEnclosure
-    enclose(const double, const double) const override
-    {
-      return {{-1e-3, 1e-3}, {-1., 1.}};
-    }
-
-    double
-    value_tolerance() const override
-    {
-      return 0.;
-    }
-  };
-
   TEST(FirstCrossingSearch, GivesUpAfterItsCapOnIntervals)
   {
     // The search crawls from s = 0 one resolution at a time; after
     // max_intervals_examined intervals it stops with SearchStalled instead.
     SearchStatistics statistics;
     EXPECT_THROW(
-      find_first_crossing(UselessEnclosureFlight(),
+      find_first_crossing(UselessEnclosureFlight(0.),
                           query(0., 1., Departure::from_lower_level, 1., 1.),
                           statistics),
       SearchStalled);
     EXPECT_EQ(statistics.max_intervals_in_one_search, max_intervals_examined);
+  }
+
+  TEST(FirstCrossingSearch, EndsACrawlWhenTheRunIsInterrupted)
+  {
+    // A signal arrives while the search crawls: it polls for it every
+    // intervals_between_interruption_polls intervals and abandons the step,
+    // long before its cap on intervals.
+    const std::uint64_t    signal_at = 3000;
+    UselessEnclosureFlight flight(0., [&](const std::uint64_t n) {
+      if (n == signal_at)
+        request_interruption(15);
+    });
+    SearchStatistics       statistics;
+    try
+      {
+        find_first_crossing(flight,
+                            query(0., 1., Departure::from_lower_level, 1., 1.),
+                            statistics);
+        ADD_FAILURE() << "the search ignored the interruption";
+      }
+    catch (const StepInterrupted &abandoned)
+      {
+        EXPECT_EQ(abandoned.signal, 15);
+      }
+    catch (const SearchStalled &)
+      {
+        ADD_FAILURE() << "the search crawled on to its cap";
+      }
+    request_interruption(0);
+    EXPECT_GT(statistics.max_intervals_in_one_search, signal_at);
+    EXPECT_LE(statistics.max_intervals_in_one_search,
+              signal_at + intervals_between_interruption_polls);
   }
 } // namespace

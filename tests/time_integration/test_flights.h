@@ -8,6 +8,9 @@
 #include <estep/systems/free_flight.h>
 
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 namespace estep::testing
@@ -182,6 +185,52 @@ namespace estep::testing
     }
 
     const double base, A, s0, w;
+  };
+  /** f = c, on its departure level, with enclosures that prove nothing
+   * (they are wider than any band and give f' no sign) and claim no
+   * round-off: every interval near s = 0 is bisected to the resolution, and a
+   * search crawls. @p on_enclosure, if given, is told the number of each
+   * enclosure made. */
+  class UselessEnclosureFlight : public FreeFlight
+  {
+  public:
+    explicit UselessEnclosureFlight(
+      const double                             c,
+      std::function<void(const std::uint64_t)> on_enclosure = {})
+      : c(c)
+      , on_enclosure(std::move(on_enclosure))
+    {}
+
+    double
+    value(const double) const override
+    {
+      return c;
+    }
+
+    LineValue
+    value_and_derivative(const double) const override
+    {
+      return {c, 0.};
+    }
+
+    LineEnclosure
+    enclose(const double, const double) const override
+    {
+      if (on_enclosure)
+        on_enclosure(++n_enclosures);
+      return {{c - 1e-3, c + 1e-3}, {-1., 1.}};
+    }
+
+    double
+    value_tolerance() const override
+    {
+      return 0.;
+    }
+
+  private:
+    const double                                   c;
+    const std::function<void(const std::uint64_t)> on_enclosure;
+    mutable std::uint64_t                          n_enclosures = 0;
   };
 } // namespace estep::testing
 

@@ -73,6 +73,15 @@ namespace estep
    */
   constexpr std::uint64_t max_intervals_examined = std::uint64_t(1) << 20;
 
+  /**
+   * A search that examines this many intervals, and every multiple, asks
+   * whether the run was interrupted (abandon_step_if_interrupted(), a
+   * collective call on several MPI ranks), so that a signal ends a crawling
+   * search long before max_intervals_examined. A search of a few tens of
+   * intervals never asks.
+   */
+  constexpr std::uint64_t intervals_between_interruption_polls = 1024;
+
   /** Thrown by find_first_crossing() when it cannot decide: it examined
    * max_intervals_examined intervals, or the round-off of f blurs the
    * levels together. */
@@ -120,7 +129,8 @@ namespace estep
    * - the search always ends: after max_intervals_examined intervals it
    *   throws SearchStalled instead of crawling on at round-off; so it does at
    *   once where that band is half the terrace or more (the round-off of f
-   *   cannot tell the two levels apart).
+   *   cannot tell the two levels apart); a requested interruption ends it
+   *   with StepInterrupted (see intervals_between_interruption_polls).
    */
   Crossing
   find_first_crossing(const FreeFlight    &flight,

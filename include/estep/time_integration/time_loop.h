@@ -143,13 +143,6 @@ namespace estep
   };
 
   /**
-   * Ask a running time loop to stop after its current step, reporting @p
-   * signal. Async-signal-safe: meant for a signal handler.
-   */
-  void
-  request_interruption(const int signal) noexcept;
-
-  /**
    * The one time loop of estep: step the initialised @p integrator to the end
    * time, hand the exact state at each output time to the observers, and stop
    * with status "unstable" (and a message) if the state becomes non-finite or
