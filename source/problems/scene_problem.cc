@@ -336,16 +336,80 @@ namespace estep
       return {points.begin(), points.end()};
     }
 
+    /** The entries of @p mesh, to the last bit: equal for equal meshes. */
+    std::string
+    mesh_identity(const MeshDescription &mesh)
+    {
+      std::ostringstream text;
+      text.precision(17);
+      text << mesh.type << '|' << mesh.n_subdivisions << '|' << mesh.radius
+           << '|' << mesh.mesh_size << '|' << mesh.generator << '|'
+           << mesh.arguments << '|' << mesh.n_refinements << '|'
+           << mesh.file_name;
+      for (const std::array<double, 3> &point :
+           {mesh.lower, mesh.upper, mesh.shift})
+        for (const double x : point)
+          text << '|' << x;
+      return text.str();
+    }
+
+    /**
+     * The meshes of a scene's bodies, made once for bodies whose Mesh
+     * subsections are the same (a scene of many equal balls, each placed
+     * elsewhere): the first of them makes it, the others copy it, and the
+     * copy is kept only until the last of them.
+     */
+    class SceneMeshes
+    {
+    public:
+      /** @p descriptions: each body's, in body order. */
+      explicit SceneMeshes(const std::vector<MeshDescription> &descriptions)
+        : descriptions(descriptions)
+      {
+        for (unsigned int b = 0; b < descriptions.size(); ++b)
+          {
+            const std::string identity = mesh_identity(descriptions[b]);
+            if (last_body.count(identity) > 0)
+              shared.insert(identity);
+            last_body[identity] = b;
+          }
+      }
+
+      /** Body @p b's mesh into the empty @p tria (errors as make_mesh()'s
+       * for @p section). */
+      void
+      make(const unsigned int        b,
+           dealii::Triangulation<3> &tria,
+           const std::string        &section)
+      {
+        const std::string identity = mesh_identity(descriptions[b]);
+        if (shared.count(identity) == 0)
+          return make_mesh(descriptions[b], tria, section);
+        if (const auto made = kept.find(identity); made != kept.end())
+          tria.copy_triangulation(made->second);
+        else
+          {
+            make_mesh(descriptions[b], tria, section);
+            kept[identity].copy_triangulation(tria);
+          }
+        if (last_body[identity] == b)
+          kept.erase(identity);
+      }
+
+    private:
+      const std::vector<MeshDescription>              descriptions;
+      std::map<std::string, unsigned int>             last_body;
+      std::set<std::string>                           shared;
+      std::map<std::string, dealii::Triangulation<3>> kept;
+    };
+
     SceneBody
-    create_body(dealii::ParameterHandler &prm, const unsigned int b)
+    create_body(dealii::ParameterHandler &prm,
+                const unsigned int        b,
+                SceneMeshes              &meshes)
     {
       const std::string section = "Scene/" + body_section(b);
       SceneBody         result;
-
-      MeshDescription mesh;
-      prm.enter_subsection("Mesh");
-      mesh.parse_parameters(prm);
-      prm.leave_subsection();
       prm.enter_subsection("Placement");
       const double scale = prm.get_double("Scale");
       const Point3 axis  = parse_point(prm.get("Rotation axis"),
@@ -368,7 +432,7 @@ namespace estep
         parse_material_parameters(prm, section + "/Material");
       prm.leave_subsection();
       const auto make_placed_mesh = [&](dealii::Triangulation<3> &tria) {
-        make_mesh(mesh, tria, section);
+        meshes.make(b, tria, section);
         if (scale != 1.)
           dealii::GridTools::scale(scale, tria);
         if (angle != 0.)
@@ -526,11 +590,21 @@ namespace estep
       const unsigned int n_bodies = prm.get_integer("Number of bodies");
       check_every_body_is_given(prm, n_bodies);
       const Point3 gravity = parse_point(prm.get("Gravity"), "Scene/Gravity");
+      std::vector<MeshDescription> descriptions(n_bodies);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          prm.enter_subsection(body_section(b));
+          prm.enter_subsection("Mesh");
+          descriptions[b].parse_parameters(prm);
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      SceneMeshes            meshes(descriptions);
       std::vector<SceneBody> bodies;
       for (unsigned int b = 0; b < n_bodies; ++b)
         {
           prm.enter_subsection(body_section(b));
-          bodies.push_back(create_body(prm, b));
+          bodies.push_back(create_body(prm, b, meshes));
           prm.leave_subsection();
         }
       prm.enter_subsection("Obstacles");

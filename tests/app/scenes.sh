@@ -34,7 +34,8 @@
 #   them) for about as long;
 # - the README's own scene runs as written;
 # - a scene's obstacles are written once (fields/obstacles.vtu) and listed in every snapshot;
-# - eight balls (898 tetrahedra each) over a floor set up and start conserving;
+# - eight balls (898 tetrahedra each) over a floor set up and start conserving; equal Mesh
+#   subsections share one mesh, and one that differs in a single entry does not;
 # - bad scenes (among them a body or an obstacle wholly inside another body, a non-finite
 #   point or initial kinetic energy): one clear message each and exit code 1.
 # Environment (set by ctest): ESTEP, the estep executable; ESTEP_SOURCE_DIR, the source tree.
@@ -111,6 +112,21 @@ grep -q "warning: Scene/Obstacles/Surface files with Contact/Mode = penalty: the
   > drop_fields.log 2>&1 || fail "scene_ball_drop with field output: $(tail -3 drop_fields.log)"
 "$ESTEP" "$files/scene_eight_balls.prm" -s "Output directory=eight" -s "Time integration/End time=0.02" \
   > eight.log 2>&1 || fail "scene_eight_balls: $(tail -3 eight.log)"
+# Bodies whose Mesh subsections are the same share one mesh, made once: one that differs in a
+# single entry (the middle ball of the cradle, a coarser mesh size) gets its own, so the cells of
+# the scene are those of four fine balls and a coarse one.
+cradle_cells() {
+  "$ESTEP" "$files/scene_newtons_cradle.prm" -s "Output directory=cells" -s "Time integration/End time=1e-9" \
+    "$@" > cells.log 2>&1 || fail "cradle cells: $(tail -2 cells.log)"
+  python3 -c 'import json; print(json.load(open("cells/summary.json"))["problem"]["cells"])'
+}
+coarse_balls=()
+for b in 1 2 3 4 5; do coarse_balls+=(-s "Scene/Body $b/Mesh/Mesh size=0.5"); done
+fine=$(cradle_cells)
+coarse=$(cradle_cells "${coarse_balls[@]}")
+mixed=$(cradle_cells -s "Scene/Body 3/Mesh/Mesh size=0.5")
+[[ $fine -gt $coarse && $((5 * mixed)) == $((4 * fine + coarse)) ]] ||
+  fail "cradle with a coarser middle ball: $mixed cells, with all fine $fine and all coarse $coarse"
 sed -n '/^## Your own problem/,/^## /p' "$ESTEP_SOURCE_DIR/README.md" | sed -n '/^```$/,/^```$/p' | sed '1d;$d' > readme.prm
 "$ESTEP" readme.prm -s "Output directory=readme" -s "Time integration/End time=0.05" > readme.log 2>&1 ||
   fail "the README's scene: $(tail -3 readme.log)"
