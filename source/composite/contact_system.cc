@@ -848,9 +848,19 @@ namespace estep
           seen[r] = true;
           pieces.emplace_back(triangle_body[i], triangles[i][0]);
         }
+    // A point outside the box of a body's boundary is outside the body.
+    const std::vector<contact::BoundingBox> boxes = body_boxes(q.data());
+    const auto in_box = [](const contact::BoundingBox &box,
+                           const contact::Point3      &p) {
+      for (unsigned int c = 0; c < 3; ++c)
+        if (!(p[c] >= box.lower[c] && p[c] <= box.upper[c]))
+          return false;
+      return true;
+    };
     for (unsigned int outer = 0; outer < bodies.size(); ++outer)
       for (const auto &[inner, vertex] : pieces)
         if (inner != outer &&
+            in_box(boxes[outer], contact::point_at(q.data(), vertex)) &&
             contact::locate_point(contact::point_at(q.data(), vertex),
                                   q.data(),
                                   triangles,
@@ -894,42 +904,63 @@ namespace estep
   std::optional<ContactSystem::Penetration>
   ContactSystem::deep_penetration(const Vector &q) const
   {
-    const double *x = q.data();
+    const double                           *x     = q.data();
+    const std::vector<contact::BoundingBox> boxes = body_boxes(x);
     for (unsigned int entered = 0; entered < bodies.size(); ++entered)
-      {
-        // The bounding box of the body that might be entered.
-        contact::Point3 lower, upper;
-        lower.fill(std::numeric_limits<double>::infinity());
-        upper.fill(-std::numeric_limits<double>::infinity());
-        for (const unsigned int i : boundary_points[entered])
+      for (unsigned int entering = 0; entering < bodies.size(); ++entering)
+        {
+          if (entering == entered)
+            continue;
+          // The box of the body that might be entered, shrunk by the limit:
+          // a point outside it is not that deep inside the body. No point of
+          // a body whose box misses it is.
+          const double         limit = penetration_limit(entered, entering);
+          contact::BoundingBox deep  = boxes[entered];
+          bool                 empty = false;
           for (unsigned int c = 0; c < 3; ++c)
             {
-              lower[c] = std::min(lower[c], x[3 * i + c]);
-              upper[c] = std::max(upper[c], x[3 * i + c]);
+              deep.lower[c] += limit;
+              deep.upper[c] -= limit;
+              empty = empty || !(deep.lower[c] <= deep.upper[c]);
             }
-        for (unsigned int entering = 0; entering < bodies.size(); ++entering)
-          {
-            if (entering == entered)
-              continue;
-            const double limit = penetration_limit(entered, entering);
-            for (const unsigned int i : boundary_points[entering])
-              {
-                const contact::Point3 p      = contact::point_at(x, i);
-                bool                  in_box = true;
-                for (unsigned int c = 0; c < 3; ++c)
-                  in_box = in_box && p[c] >= lower[c] + limit &&
-                           p[c] <= upper[c] - limit;
-                if (!in_box)
-                  continue;
-                const contact::PointAndSurface where = contact::locate_point(
-                  p, x, triangles, body_triangles[entered], limit);
-                if (where.distance > limit && where.winding_number > 0.5)
-                  return Penetration{
-                    entering, entered, i, where.distance, limit};
-              }
-          }
-      }
+          if (empty || !deep.overlaps(boxes[entering]))
+            continue;
+          for (const unsigned int i : boundary_points[entering])
+            {
+              const contact::Point3 p      = contact::point_at(x, i);
+              bool                  in_box = true;
+              for (unsigned int c = 0; c < 3; ++c)
+                in_box =
+                  in_box && p[c] >= deep.lower[c] && p[c] <= deep.upper[c];
+              if (!in_box)
+                continue;
+              const contact::PointAndSurface where = contact::locate_point(
+                p, x, triangles, body_triangles[entered], limit);
+              if (where.distance > limit && where.winding_number > 0.5)
+                return Penetration{entering, entered, i, where.distance, limit};
+            }
+        }
     return std::nullopt;
+  }
+
+
+
+  std::vector<contact::BoundingBox>
+  ContactSystem::body_boxes(const double *x) const
+  {
+    std::vector<contact::BoundingBox> boxes(bodies.size());
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        boxes[b].lower.fill(std::numeric_limits<double>::infinity());
+        boxes[b].upper.fill(-std::numeric_limits<double>::infinity());
+        for (const unsigned int i : boundary_points[b])
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              boxes[b].lower[c] = std::min(boxes[b].lower[c], x[3 * i + c]);
+              boxes[b].upper[c] = std::max(boxes[b].upper[c], x[3 * i + c]);
+            }
+      }
+    return boxes;
   }
 
 

@@ -252,7 +252,8 @@ namespace estep
      * (intersecting_bodies() empty): the first body or surface (numbered as
      * there) of which a connected piece of the boundary lies wholly inside
      * a body, and that body; a vertex of each piece is tested (winding
-     * number above 1/2 in the other's boundary). */
+     * number above 1/2 in the other's boundary) where it lies in the box of
+     * that boundary. */
     std::optional<std::pair<unsigned int, unsigned int>>
     nested_bodies(const Vector &q) const;
 
@@ -285,9 +286,10 @@ namespace estep
      * the mesh size, the exact mode at zero). The first such point found, if
      * any. Static surfaces have no inside and are not checked; neither is a
      * body against itself. Only points inside the other body's bounding box
-     * shrunk by the limit are located (distance, then winding number), so
-     * the check costs a box test per boundary point as long as no body
-     * reaches that deep into another's box.
+     * shrunk by the limit are located (distance, then winding number), and
+     * only of bodies whose own box reaches into that shrunk box, so that the
+     * check costs a box test per pair of bodies as long as no body reaches
+     * that deep into another's box.
      */
     std::optional<Penetration>
     deep_penetration(const Vector &q) const;
@@ -335,6 +337,10 @@ namespace estep
     std::vector<std::vector<unsigned int>> boundary_points, body_triangles;
     std::vector<double>                    longest_boundary_edge;
     mutable std::vector<Vector>            scratch_q, scratch_g;
+
+    /** The box of each body's boundary points at @p x. */
+    std::vector<contact::BoundingBox>
+    body_boxes(const double *x) const;
   };
 } // namespace estep
 
