@@ -209,6 +209,20 @@ namespace estep
     shift          = parse_point(prm.get("Shift"), "Mesh/Shift");
   }
 
+  std::string
+  MeshDescription::identity() const
+  {
+    std::ostringstream text;
+    text.precision(17);
+    text << type << '|' << n_subdivisions << '|' << radius << '|' << mesh_size
+         << '|' << generator << '|' << arguments << '|' << n_refinements << '|'
+         << file_name;
+    for (const std::array<double, 3> &point : {lower, upper, shift})
+      for (const double x : point)
+        text << '|' << x;
+    return text.str();
+  }
+
   TypeReaders
   MeshDescription::type_readers()
   {

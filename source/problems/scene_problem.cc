@@ -336,23 +336,6 @@ namespace estep
       return {points.begin(), points.end()};
     }
 
-    /** The entries of @p mesh, to the last bit: equal for equal meshes. */
-    std::string
-    mesh_identity(const MeshDescription &mesh)
-    {
-      std::ostringstream text;
-      text.precision(17);
-      text << mesh.type << '|' << mesh.n_subdivisions << '|' << mesh.radius
-           << '|' << mesh.mesh_size << '|' << mesh.generator << '|'
-           << mesh.arguments << '|' << mesh.n_refinements << '|'
-           << mesh.file_name;
-      for (const std::array<double, 3> &point :
-           {mesh.lower, mesh.upper, mesh.shift})
-        for (const double x : point)
-          text << '|' << x;
-      return text.str();
-    }
-
     /**
      * The meshes of a scene's bodies, made once for bodies whose Mesh
      * subsections are the same (a scene of many equal balls, each placed
@@ -368,7 +351,7 @@ namespace estep
       {
         for (unsigned int b = 0; b < descriptions.size(); ++b)
           {
-            const std::string identity = mesh_identity(descriptions[b]);
+            const std::string identity = descriptions[b].identity();
             if (last_body.count(identity) > 0)
               shared.insert(identity);
             last_body[identity] = b;
@@ -382,7 +365,7 @@ namespace estep
            dealii::Triangulation<3> &tria,
            const std::string        &section)
       {
-        const std::string identity = mesh_identity(descriptions[b]);
+        const std::string identity = descriptions[b].identity();
         if (shared.count(identity) == 0)
           return make_mesh(descriptions[b], tria, section);
         if (const auto made = kept.find(identity); made != kept.end())

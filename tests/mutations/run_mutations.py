@@ -92,7 +92,9 @@ def sync_tree(source, destination):
 
 
 def test_targets(build):
-    """Test name -> the build target of its executable (estep_app for scripts)."""
+    """Test name -> the build targets it needs: its executable's, or for a script estep_app
+    and the libraries its environment names (lib<target>.so, as the plugins of
+    unit/command_line)."""
     listing = subprocess.run(["ctest", "--show-only=json-v1"], cwd=build,
                              stdout=subprocess.PIPE, text=True, check=True).stdout
     targets = {}
@@ -100,7 +102,17 @@ def test_targets(build):
         # A test executable not built yet has no command in the listing.
         command = test.get("command") or ["test_" + test["name"].replace("/", "_")]
         executable = Path(command[0]).name
-        targets[test["name"]] = executable if executable.startswith("test_") else "estep_app"
+        if executable.startswith("test_"):
+            targets[test["name"]] = [executable]
+            continue
+        needed = ["estep_app"]
+        for prop in test.get("properties", []):
+            if prop["name"] == "ENVIRONMENT":
+                for entry in prop["value"]:
+                    library = Path(entry.partition("=")[2]).name
+                    if library.startswith("lib") and library.endswith(".so"):
+                        needed.append(library[3:-3])
+        targets[test["name"]] = needed
     return targets
 
 
@@ -173,7 +185,7 @@ def main():
         sys.exit(f"unknown tests in {CATALOGUE.name}: {', '.join(unknown)}")
 
     def build_and_test(tests, time_limit=None):
-        wanted = sorted({targets[t] for t in tests} | {"estep_app"})
+        wanted = sorted({target for t in tests for target in targets[t]} | {"estep_app"})
         if run(["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *wanted],
                scratch, log) != 0:
             return "does not build"

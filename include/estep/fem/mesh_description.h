@@ -90,6 +90,11 @@ namespace estep
     void
     parse_parameters(const dealii::ParameterHandler &prm);
 
+    /** Every entry above as text, to the last bit: equal exactly for
+     * descriptions of the same mesh (an entry added above must join it). */
+    std::string
+    identity() const;
+
     /** Each entry that only some types read, with those types (for
      * entries_unread_by_type()). */
     static TypeReaders
