@@ -859,15 +859,14 @@ namespace estep
     };
     for (unsigned int outer = 0; outer < bodies.size(); ++outer)
       for (const auto &[inner, vertex] : pieces)
-        if (inner != outer &&
-            in_box(boxes[outer], contact::point_at(q.data(), vertex)) &&
-            contact::locate_point(contact::point_at(q.data(), vertex),
-                                  q.data(),
-                                  triangles,
-                                  body_triangles[outer],
-                                  0.)
-                .winding_number > 0.5)
-          return std::make_pair(inner, outer);
+        {
+          const contact::Point3 p = contact::point_at(q.data(), vertex);
+          if (inner != outer && in_box(boxes[outer], p) &&
+              contact::locate_point(
+                p, q.data(), triangles, body_triangles[outer], 0.)
+                  .winding_number > 0.5)
+            return std::make_pair(inner, outer);
+        }
     return std::nullopt;
   }
 

@@ -350,12 +350,7 @@ namespace estep
         : descriptions(descriptions)
       {
         for (unsigned int b = 0; b < descriptions.size(); ++b)
-          {
-            const std::string identity = descriptions[b].identity();
-            if (last_body.count(identity) > 0)
-              shared.insert(identity);
-            last_body[identity] = b;
-          }
+          last_body[descriptions[b].identity()] = b;
       }
 
       /** Body @p b's mesh into the empty @p tria (errors as make_mesh()'s
@@ -366,23 +361,20 @@ namespace estep
            const std::string        &section)
       {
         const std::string identity = descriptions[b].identity();
-        if (shared.count(identity) == 0)
-          return make_mesh(descriptions[b], tria, section);
-        if (const auto made = kept.find(identity); made != kept.end())
+        const auto        made     = kept.find(identity);
+        if (made != kept.end())
           tria.copy_triangulation(made->second);
         else
-          {
-            make_mesh(descriptions[b], tria, section);
-            kept[identity].copy_triangulation(tria);
-          }
-        if (last_body[identity] == b)
+          make_mesh(descriptions[b], tria, section);
+        if (last_body.at(identity) == b)
           kept.erase(identity);
+        else if (made == kept.end())
+          kept[identity].copy_triangulation(tria);
       }
 
     private:
       const std::vector<MeshDescription>              descriptions;
       std::map<std::string, unsigned int>             last_body;
-      std::set<std::string>                           shared;
       std::map<std::string, dealii::Triangulation<3>> kept;
     };
 
