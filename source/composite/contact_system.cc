@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -809,14 +810,24 @@ namespace estep
 
 
 
-  std::vector<std::pair<unsigned int, unsigned int>>
-  ContactSystem::intersecting_bodies(const Vector &q) const
+  std::vector<ContactSystem::Meeting>
+  ContactSystem::meeting_bodies(const Vector &q) const
   {
-    std::set<std::pair<unsigned int, unsigned int>> bodies;
-    for (const auto &[i, j] : intersecting_pairs(q))
-      bodies.emplace(std::min(triangle_body[i], triangle_body[j]),
-                     std::max(triangle_body[i], triangle_body[j]));
-    return {bodies.begin(), bodies.end()};
+    std::map<std::pair<unsigned int, unsigned int>, bool> crossing;
+    for (auto [i, j] : intersecting_pairs(q))
+      {
+        // A surface's triangle second: it bounds no body.
+        if (triangle_body[i] >= bodies.size())
+          std::swap(i, j);
+        crossing[std::minmax(triangle_body[i], triangle_body[j])] |=
+          contact::triangles_cross(contact::triangle_at(q.data(), triangles[i]),
+                                   contact::triangle_at(q.data(), triangles[j]),
+                                   triangle_body[j] < bodies.size());
+      }
+    std::vector<Meeting> meetings;
+    for (const auto &[pair, crosses] : crossing)
+      meetings.push_back({pair.first, pair.second, crosses});
+    return meetings;
   }
 
 
@@ -824,10 +835,10 @@ namespace estep
   std::optional<std::pair<unsigned int, unsigned int>>
   ContactSystem::nested_bodies(const Vector &q) const
   {
-    // A vertex of each connected piece of each body's and surface's
-    // boundary: without intersecting boundaries, either all of a piece lies
-    // inside a body or none of it does. The pieces: the classes of the
-    // vertices joined by triangle edges.
+    // The connected pieces of each body's and surface's boundary: the
+    // classes of the vertices joined by triangle edges. Without crossing
+    // boundaries, either all of a piece lies inside a body or none of it
+    // does, apart from points on the body's boundary.
     const unsigned int        n_vertices = q.size() / 3;
     std::vector<unsigned int> parent(n_vertices);
     std::iota(parent.begin(), parent.end(), 0u);
@@ -839,15 +850,28 @@ namespace estep
     for (const auto &triangle : triangles)
       for (const unsigned int corner : {triangle[1], triangle[2]})
         parent[root(corner)] = root(triangle[0]);
-    // Per piece, its owner and a vertex.
-    std::vector<std::pair<unsigned int, unsigned int>> pieces;
-    std::vector<bool>                                  seen(n_vertices, false);
+    struct Piece
+    {
+      unsigned int              owner;
+      std::vector<unsigned int> vertices;
+    };
+    std::vector<Piece>        pieces;
+    std::vector<unsigned int> piece_at_root(
+      n_vertices, std::numeric_limits<unsigned int>::max());
+    std::vector<bool> listed(n_vertices, false);
     for (unsigned int i = 0; i < triangles.size(); ++i)
-      if (const unsigned int r = root(triangles[i][0]); !seen[r])
-        {
-          seen[r] = true;
-          pieces.emplace_back(triangle_body[i], triangles[i][0]);
-        }
+      for (const unsigned int corner : triangles[i])
+        if (!listed[corner])
+          {
+            listed[corner]      = true;
+            unsigned int &piece = piece_at_root[root(corner)];
+            if (piece == std::numeric_limits<unsigned int>::max())
+              {
+                piece = pieces.size();
+                pieces.push_back({triangle_body[i], {}});
+              }
+            pieces[piece].vertices.push_back(corner);
+          }
     // A point outside the box of a body's boundary is outside the body.
     const std::vector<contact::BoundingBox> boxes = body_boxes(q.data());
     const auto in_box = [](const contact::BoundingBox &box,
@@ -858,15 +882,28 @@ namespace estep
       return true;
     };
     for (unsigned int outer = 0; outer < bodies.size(); ++outer)
-      for (const auto &[inner, vertex] : pieces)
-        {
-          const contact::Point3 p = contact::point_at(q.data(), vertex);
-          if (inner != outer && in_box(boxes[outer], p) &&
-              contact::locate_point(
-                p, q.data(), triangles, body_triangles[outer], 0.)
-                  .winding_number > 0.5)
-            return std::make_pair(inner, outer);
-        }
+      {
+        // Closer to the boundary than this, a vertex touches it.
+        const contact::Point3 diagonal =
+          contact::minus(boxes[outer].upper, boxes[outer].lower);
+        const double on_boundary =
+          1e-9 * std::sqrt(contact::dot(diagonal, diagonal));
+        for (const Piece &piece : pieces)
+          if (piece.owner != outer)
+            for (const unsigned int vertex : piece.vertices)
+              {
+                const contact::Point3 p = contact::point_at(q.data(), vertex);
+                if (!in_box(boxes[outer], p))
+                  break;
+                const contact::PointAndSurface where = contact::locate_point(
+                  p, q.data(), triangles, body_triangles[outer], on_boundary);
+                if (where.distance <= on_boundary)
+                  continue;
+                if (where.winding_number > 0.5)
+                  return std::make_pair(piece.owner, outer);
+                break;
+              }
+      }
     return std::nullopt;
   }
 

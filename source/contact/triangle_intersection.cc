@@ -200,6 +200,61 @@ namespace estep
         return orient2d(T[0], T[1], p) >= 0 && orient2d(T[1], T[2], p) >= 0 &&
                orient2d(T[2], T[0], p) >= 0;
       }
+
+      // Coplanar T0 and T1 projected onto the coordinate plane across the
+      // axis along which T0's normal is largest (another if the projection
+      // degenerates, which is checked exactly), each turned counterclockwise
+      // there. Returns how T1 faced before it was turned: +1 as T0, -1
+      // opposite; 0 if a triangle is degenerate.
+      int
+      project_coplanar_counterclockwise(const Triangle3       &T0,
+                                        const Triangle3       &T1,
+                                        std::array<Point2, 3> &A,
+                                        std::array<Point2, 3> &B)
+      {
+        const Point3 n        = cross(minus(T0[1], T0[0]), minus(T0[2], T0[0]));
+        unsigned int order[3] = {0, 1, 2};
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i + 1; j < 3; ++j)
+            if (std::abs(n[order[j]]) > std::abs(n[order[i]]))
+              std::swap(order[i], order[j]);
+        for (const unsigned int axis : order)
+          {
+            const unsigned int i = (axis + 1) % 3, j = (axis + 2) % 3;
+            for (unsigned int v = 0; v < 3; ++v)
+              {
+                A[v] = {{T0[v][i], T0[v][j]}};
+                B[v] = {{T1[v][i], T1[v][j]}};
+              }
+            const int oA = orient2d(A[0], A[1], A[2]);
+            if (oA == 0)
+              continue;
+            const int oB = orient2d(B[0], B[1], B[2]);
+            if (oB == 0)
+              return 0;
+            if (oA < 0)
+              std::swap(A[1], A[2]);
+            if (oB < 0)
+              std::swap(B[1], B[2]);
+            return oA * oB;
+          }
+        return 0;
+      }
+
+      // Whether the line of an edge of the counterclockwise E has all of F
+      // on its closed outer side: the interiors of two convex polygons are
+      // disjoint if and only if such an edge of one of them exists.
+      bool
+      edge_separates_2d(const std::array<Point2, 3> &E,
+                        const std::array<Point2, 3> &F)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          if (orient2d(E[e], E[(e + 1) % 3], F[0]) <= 0 &&
+              orient2d(E[e], E[(e + 1) % 3], F[1]) <= 0 &&
+              orient2d(E[e], E[(e + 1) % 3], F[2]) <= 0)
+            return true;
+        return false;
+      }
     } // namespace
 
 
@@ -207,44 +262,17 @@ namespace estep
     bool
     coplanar_triangles_intersect(const Triangle3 &T0, const Triangle3 &T1)
     {
-      // Drop the coordinate axis along which T0's normal is largest; check
-      // exactly that the projection does not degenerate, else try the other
-      // axes.
-      const Point3 n        = cross(minus(T0[1], T0[0]), minus(T0[2], T0[0]));
-      unsigned int order[3] = {0, 1, 2};
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = i + 1; j < 3; ++j)
-          if (std::abs(n[order[j]]) > std::abs(n[order[i]]))
-            std::swap(order[i], order[j]);
-      for (const unsigned int axis : order)
-        {
-          const unsigned int    i = (axis + 1) % 3, j = (axis + 2) % 3;
-          std::array<Point2, 3> A, B;
-          for (unsigned int v = 0; v < 3; ++v)
-            {
-              A[v] = {{T0[v][i], T0[v][j]}};
-              B[v] = {{T1[v][i], T1[v][j]}};
-            }
-          const int oA = orient2d(A[0], A[1], A[2]);
-          if (oA == 0)
-            continue;
-          const int oB = orient2d(B[0], B[1], B[2]);
-          if (oB == 0)
-            return false; // T1 degenerate
-          if (oA < 0)
-            std::swap(A[1], A[2]);
-          if (oB < 0)
-            std::swap(B[1], B[2]);
-          for (unsigned int v = 0; v < 3; ++v)
-            if (inside_2d(A, B[v]) || inside_2d(B, A[v]))
-              return true;
-          for (unsigned int e = 0; e < 3; ++e)
-            for (unsigned int f = 0; f < 3; ++f)
-              if (segments_cross_2d(A[e], A[(e + 1) % 3], B[f], B[(f + 1) % 3]))
-                return true;
-          return false;
-        }
-      return false; // T0 degenerate
+      std::array<Point2, 3> A, B;
+      if (!project_coplanar_counterclockwise(T0, T1, A, B))
+        return false;
+      for (unsigned int v = 0; v < 3; ++v)
+        if (inside_2d(A, B[v]) || inside_2d(B, A[v]))
+          return true;
+      for (unsigned int e = 0; e < 3; ++e)
+        for (unsigned int f = 0; f < 3; ++f)
+          if (segments_cross_2d(A[e], A[(e + 1) % 3], B[f], B[(f + 1) % 3]))
+            return true;
+      return false;
     }
 
 
@@ -256,6 +284,40 @@ namespace estep
       EdgeRef start, end;
       return intersect_core(T0, T1, sP, sQ, start, end) !=
              IntersectionKind::none;
+    }
+
+
+
+    bool
+    triangles_cross(const Triangle3 &T0,
+                    const Triangle3 &T1,
+                    const bool       T1_bounds_a_body)
+    {
+      int     s0[3], s1[3]; // the sides of T0's points of T1's plane, and so on
+      EdgeRef start, end;
+      switch (intersect_core(T0, T1, s0, s1, start, end))
+        {
+          case IntersectionKind::none:
+          case IntersectionKind::point:
+            return false;
+          case IntersectionKind::coplanar:
+            {
+              if (!T1_bounds_a_body)
+                return false;
+              std::array<Point2, 3> A, B;
+              return project_coplanar_counterclockwise(T0, T1, A, B) > 0 &&
+                     !edge_separates_2d(A, B) && !edge_separates_2d(B, A);
+            }
+          case IntersectionKind::segment:
+            break;
+        }
+      const auto outside = [](const int s[3]) {
+        return s[0] >= 0 && s[1] >= 0 && s[2] >= 0;
+      };
+      const auto inside = [](const int s[3]) {
+        return s[0] <= 0 && s[1] <= 0 && s[2] <= 0;
+      };
+      return !(outside(s1) || outside(s0) || (!T1_bounds_a_body && inside(s0)));
     }
 
 

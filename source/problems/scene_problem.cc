@@ -653,35 +653,43 @@ namespace estep
           v0             = contact_system->concatenate_velocities(v);
           for (unsigned int b = 0; b < n_bodies; ++b)
             offsets[b] = contact_system->point_offset(b);
-          if (const auto overlaps = contact_system->intersecting_bodies(q0);
-              !overlaps.empty())
-            {
-              const auto [b1, b2] = overlaps.front();
-              if (b2 >= n_bodies)
-                throw std::runtime_error(
-                  "Scene: " + body_section(b1) + " intersects obstacle " +
-                  contact_system->surface(b2 - n_bodies).name +
-                  " at t = 0 (their triangles intersect); move the body or "
-                  "the surface.");
+          // Bodies whose boundaries cross overlap, and so does a body inside
+          // another. Boundaries that touch cannot start impenetrable
+          // contact: its pairs at a distance of exactly zero have no side
+          // (two cubes placed flush stalled at t = 0, or passed into each
+          // other).
+          const auto name = [&](const unsigned int b) {
+            return b >= n_bodies ?
+                     "obstacle " + contact_system->surface(b - n_bodies).name :
+                     body_section(b);
+          };
+          const auto meetings = contact_system->meeting_bodies(q0);
+          for (const auto &[b1, b2, crossing] : meetings)
+            if (crossing)
               throw std::runtime_error(
-                b1 == b2 ?
-                  "Scene/" + body_section(b1) +
-                    ": its boundary intersects itself at t = 0." :
-                  "Scene: " + body_section(b1) + " and " + body_section(b2) +
-                    " overlap at t = 0 (their boundaries intersect); "
-                    "move them apart.");
-            }
+                b2 >= n_bodies ?
+                  "Scene: " + name(b1) + " intersects " + name(b2) +
+                    " at t = 0 (their triangles cross); move the body or "
+                    "the surface." :
+                b1 == b2 ? "Scene/" + name(b1) +
+                             ": its boundary intersects itself at t = 0." :
+                           "Scene: " + name(b1) + " and " + name(b2) +
+                             " overlap at t = 0 (their boundaries cross); "
+                             "move them apart.");
           if (const auto nested = contact_system->nested_bodies(q0))
+            throw std::runtime_error("Scene: " + name(nested->first) +
+                                     " lies inside " + name(nested->second) +
+                                     " at t = 0; move them apart.");
+          if (!meetings.empty() &&
+              contact.mode == ContactParameters::Mode::impenetrability)
             {
-              const auto [inner, outer] = *nested;
+              const ContactSystem::Meeting &touch = meetings.front();
               throw std::runtime_error(
-                "Scene: " +
-                (inner >= n_bodies ?
-                   "obstacle " +
-                     contact_system->surface(inner - n_bodies).name :
-                   body_section(inner)) +
-                " lies inside " + body_section(outer) +
-                " at t = 0; move them apart.");
+                "Scene: " + name(touch.first) + " touches " +
+                (touch.first == touch.second ? "itself" : name(touch.second)) +
+                " at t = 0 (faces flush, or a vertex or an edge on a face); "
+                "impenetrable contact needs a gap at the start, however "
+                "small (1e-9 of their size will do).");
             }
         }
 

@@ -529,6 +529,29 @@ rc=$?
 grep -q "the round-off of V along the flight has no finite bound" flush_penalty.log || fail "flush faces by penalty: $(tail -1 flush_penalty.log)"
 ! grep -q "try a larger Energy step" flush_penalty.log || fail "flush faces by penalty: advises a larger energy step"
 
+# Bodies that touch at t = 0 are not bodies that overlap. The cubes placed flush, face to face,
+# are refused by impenetrability with the cause and the remedy (a gap, however small), which then
+# runs. Overlapping by half, their side faces flush (no triangle passes through another, some lie
+# on others facing the same way), they are refused as overlapping; so is, as lying inside, a
+# tetrahedron inside the first cube with three of its vertices on the cube's faces.
+expect_error "Scene: Body 1 touches Body 2 at t = 0 \(faces flush, or a vertex or an edge on a face\); impenetrable contact needs a gap" \
+  flush.prm -s "Output directory=bad" -s "Scene/Body 2/Placement/Shift=1, 0, 0"
+expect_error "Scene: Body 1 touches obstacle floor.stl at t = 0" flush.prm -s "Output directory=bad" \
+  -s "Scene/Obstacles/Surface files=floor.stl"
+timeout 300 "$ESTEP" flush.prm -s "Scene/Body 2/Placement/Shift=1.000000001, 0, 0" -s "Output directory=gap" \
+  > gap.log 2>&1 || fail "cubes 1e-9 apart at t = 0: $(tail -2 gap.log)"
+python3 - <<'PY' || fail "cubes 1e-9 apart at t = 0"
+import json
+c = json.load(open("gap/summary.json"))["contact"]
+assert c["contact instants"] > 0, c
+assert c["largest number of intersecting face pairs"] == 0, c
+assert c["final rigid motion"]["body 2"]["V"][0] > 0.1, c["final rigid motion"]
+PY
+expect_error "Scene: Body 1 and Body 2 overlap at t = 0 \(their boundaries cross\)" flush.prm -s "Output directory=bad" -s "Scene/Body 2/Placement/Shift=0.5, 0, 0"
+printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0.5 0.5 0\n2 0 0.5 0.5\n3 0.5 0 0.5\n4 0.5 0.5 0.5\n$EndNodes\n$Elements\n1\n1 4 2 0 1 1 2 3 4\n$EndElements\n' > wedged.msh
+expect_error "Scene: Body 2 lies inside Body 1 at t = 0" flush.prm -s "Output directory=bad" -s "Scene/Body 2/Mesh/Type=gmsh" \
+  -s "Scene/Body 2/Mesh/File name=wedged.msh" -s "Scene/Body 2/Placement/Shift=0, 0, 0"
+
 # A slow stack: the upper cube lands flat on the lower with its vertices on the lower's, so
 # slowly that the touching pairs hold each other: 1,000 reflections one pair at a time at one
 # instant (the cap) left a pair approaching. Reflections off all touching pairs at once part

@@ -353,9 +353,19 @@ TEST(StaticSurface, ContactSystemLayout)
   Vector sunk = q;
   for (unsigned int i = 0; i < body->n_vertices(); ++i)
     sunk[3 * i + 2] -= 0.3;
-  const auto pairs = system.intersecting_bodies(sunk);
-  ASSERT_EQ(pairs.size(), 1u);
-  EXPECT_EQ(pairs[0], (std::pair<unsigned int, unsigned int>{0, 1}));
+  const auto meetings = system.meeting_bodies(sunk);
+  ASSERT_EQ(meetings.size(), 1u);
+  EXPECT_EQ(meetings[0].first, 0u);
+  EXPECT_EQ(meetings[0].second, 1u);
+  EXPECT_TRUE(meetings[0].crossing);
+  // Standing on the floor: touching, not crossing; apart from it, not
+  // meeting.
+  Vector standing = q;
+  for (unsigned int i = 0; i < body->n_vertices(); ++i)
+    standing[3 * i + 2] -= 0.05;
+  ASSERT_EQ(system.meeting_bodies(standing).size(), 1u);
+  EXPECT_FALSE(system.meeting_bodies(standing)[0].crossing);
+  EXPECT_TRUE(system.meeting_bodies(q).empty());
   // The rigid motion of the bodies ignores the surface points.
   EXPECT_NEAR(system.system_motion(q, v).centre[2], 0.55, 1e-14);
 }

@@ -392,3 +392,96 @@ TEST(TriangleIntersection, KnownConfigurations)
   const Triangle3 D = {{{{0., 0., 0.}}, {{1., 1., 1.}}, {{2., 2., 2.}}}};
   EXPECT_EQ(intersect_triangles(F, D).kind, IntersectionKind::none);
 }
+
+// Crossing against touching (triangles_cross()): the floor F bounds a body
+// below z = 0 (its normal points up); the other triangles bound a body above
+// it where they touch, and reach into the floor's body where they cross.
+TEST(TriangleIntersection, CrossingAgainstTouching)
+{
+  const Triangle3 F = {{{{0., 0., 0.}}, {{4., 0., 0.}}, {{0., 4., 0.}}}};
+  struct Case
+  {
+    const char *what;
+    Triangle3   T;
+    bool        crosses_body, crosses_surface;
+  };
+  const std::vector<Case> cases = {
+    {"a flush face, facing down",
+     {{{{1., 1., 0.}}, {{1., 3., 0.}}, {{3., 1., 0.}}}},
+     false,
+     false},
+    {"a coplanar face facing up, overlapping",
+     {{{{1., 1., 0.}}, {{3., 1., 0.}}, {{1., 3., 0.}}}},
+     true,
+     false},
+    {"a coplanar face facing up, overlapping beyond an edge",
+     {{{{1., 1., 0.}}, {{5., 1., 0.}}, {{1., 5., 0.}}}},
+     true,
+     false},
+    {"a coplanar face facing up beside it, sharing an edge",
+     {{{{4., 0., 0.}}, {{4., 4., 0.}}, {{0., 4., 0.}}}},
+     false,
+     false},
+    {"a vertex on the face from above",
+     {{{{1., 1., 0.}}, {{1., 1., 3.}}, {{2., 1., 3.}}}},
+     false,
+     false},
+    {"a vertex through the face",
+     {{{{1., 1., -0.1}}, {{1., 1., 3.}}, {{2., 1., 3.}}}},
+     true,
+     true},
+    {"an edge on the face, the triangle standing on it",
+     {{{{1., 1., 0.}}, {{2., 1., 0.}}, {{1., 1., 2.}}}},
+     false,
+     false},
+    {"an edge on the face, the triangle hanging below it",
+     {{{{1., 1., 0.}}, {{2., 1., 0.}}, {{1., 1., -2.}}}},
+     true,
+     false},
+    {"an edge across the face's edge, a single point",
+     {{{{2., -1., -1.}}, {{2., 1., 1.}}, {{3., 0., 3.}}}},
+     false,
+     false},
+    {"a triangle piercing the face",
+     {{{{1., 1., -1.}}, {{1., 1., 1.}}, {{1., 3., -1.}}}},
+     true,
+     true},
+    {"a triangle apart",
+     {{{{5., 5., 1.}}, {{9., 5., 1.}}, {{5., 9., 1.}}}},
+     false,
+     false}};
+  for (const Case &c : cases)
+    {
+      EXPECT_EQ(triangles_cross(c.T, F, true), c.crosses_body) << c.what;
+      EXPECT_EQ(triangles_cross(F, c.T, true), c.crosses_body)
+        << c.what << " (the arguments swapped)";
+      EXPECT_EQ(triangles_cross(c.T, F, false), c.crosses_surface)
+        << c.what << " (the floor a surface)";
+    }
+  // A body's face flush under a surface's face, the surface either way up.
+  const Triangle3 F_down = {{{{0., 0., 0.}}, {{0., 4., 0.}}, {{4., 0., 0.}}}};
+  const Triangle3 below  = {{{{1., 1., 0.}}, {{3., 1., 0.}}, {{1., 3., 0.}}}};
+  EXPECT_FALSE(triangles_cross(below, F, false));
+  EXPECT_FALSE(triangles_cross(below, F_down, false));
+  EXPECT_TRUE(triangles_cross(below, F, true));
+  EXPECT_FALSE(triangles_cross(below, F_down, true));
+}
+
+// In general position (no point on another triangle's plane), intersecting
+// triangles always cross: touching takes a point on a plane.
+TEST(TriangleIntersection, IntersectingInGeneralPositionCross)
+{
+  std::mt19937_64    rng(5);
+  const unsigned int n           = size(20000, 200000);
+  unsigned int       n_intersect = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      const Triangle3 T0 = random_triangle(rng, 1., {{0., 0., 0.}});
+      const Triangle3 T1 = random_triangle(rng, 1., {{0., 0., 0.}});
+      const bool      intersect = triangles_intersect(T0, T1);
+      n_intersect += intersect;
+      EXPECT_EQ(triangles_cross(T0, T1, true), intersect) << describe(T0, T1);
+      EXPECT_EQ(triangles_cross(T0, T1, false), intersect) << describe(T0, T1);
+    }
+  EXPECT_GT(n_intersect, n / 20);
+}

@@ -243,17 +243,30 @@ namespace estep
     std::vector<std::pair<unsigned int, unsigned int>>
     intersecting_pairs(const Vector &q) const;
 
-    /** The pairs of bodies (b1 <= b2) whose boundaries intersect at q; b2
-     * = n_bodies() + s for body b1 intersecting surface s. */
-    std::vector<std::pair<unsigned int, unsigned int>>
-    intersecting_bodies(const Vector &q) const;
+    /** Two bodies whose boundaries meet: some pair of their triangles
+     * intersects. */
+    struct Meeting
+    {
+      /** The bodies, first <= second; second = n_bodies() + s for surface
+       * s. */
+      unsigned int first, second;
+      /** Whether a pair of their intersecting triangles crosses, not only
+       * touches (contact::triangles_cross()). */
+      bool crossing;
+    };
 
-    /** For a configuration whose boundaries do not intersect
-     * (intersecting_bodies() empty): the first body or surface (numbered as
-     * there) of which a connected piece of the boundary lies wholly inside
-     * a body, and that body; a vertex of each piece is tested (winding
-     * number above 1/2 in the other's boundary) where it lies in the box of
-     * that boundary. */
+    /** The pairs of bodies whose boundaries meet at q, in increasing order. */
+    std::vector<Meeting>
+    meeting_bodies(const Vector &q) const;
+
+    /** For a configuration whose boundaries do not cross (no crossing
+     * meeting_bodies()): the first body or surface (numbered as there) of which
+     * a connected piece of the boundary lies wholly inside a body, and that
+     * body. Where a piece lies in the box of that body, its vertices are
+     * tested in turn until one lies off the body's boundary (further than
+     * 1e-9 of the box's diagonal): the piece is inside if that vertex's
+     * winding number exceeds 1/2. A piece all of whose vertices lie on
+     * the body's boundary is not inside. */
     std::optional<std::pair<unsigned int, unsigned int>>
     nested_bodies(const Vector &q) const;
 

@@ -97,6 +97,31 @@ namespace estep
      */
     bool
     coplanar_triangles_intersect(const Triangle3 &T0, const Triangle3 &T1);
+
+    /**
+     * Whether the closed triangles @p T0 and @p T1 cross, rather than only
+     * touch: whether the bodies they bound overlap next to where they meet.
+     * Each triangle bounding a body turns counterclockwise seen from outside
+     * it (its normal (b - a) x (c - a) points out). @p T1_bounds_a_body false
+     * makes T1 two-sided: a surface with no inside.
+     *
+     * Exact (orientation predicates only). Triangles that meet touch if
+     * - they meet in a single point (a vertex on a face, two edges across
+     *   each other);
+     * - T1 lies on the outer closed side of T0's plane, or T0 on the outer
+     *   closed side of T1's plane (on either side, if T1 is two-sided): an
+     *   edge lying on a face;
+     * - they are coplanar and face opposite ways (flush faces), or face the
+     *   same way with disjoint interiors (faces side by side), or T1 is
+     *   two-sided.
+     * Otherwise they cross. The rules are local: a body lying inside another
+     * and touching it from within touches at every pair; whether such a
+     * body is nested takes a point of it off the other's boundary.
+     */
+    bool
+    triangles_cross(const Triangle3 &T0,
+                    const Triangle3 &T1,
+                    const bool       T1_bounds_a_body);
   } // namespace contact
 } // namespace estep
 
