@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -57,6 +58,47 @@ namespace estep
                (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
       }
 
+      inline BoundingBox
+      empty_box()
+      {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        return {{{inf, inf, inf}}, {{-inf, -inf, -inf}}};
+      }
+
+      // Adds point i at q, and at q + s_max v if v is given (rounded
+      // outward), to the box.
+      inline void
+      add_point(BoundingBox       &b,
+                const double      *q,
+                const double      *v,
+                const double       s_max,
+                const unsigned int i)
+      {
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const double x = q[3 * i + k];
+            b.lower[k]     = std::min(b.lower[k], x);
+            b.upper[k]     = std::max(b.upper[k], x);
+            if (v != nullptr)
+              {
+                const double y = x + s_max * v[3 * i + k];
+                b.lower[k]     = std::min(b.lower[k], round_down(y));
+                b.upper[k]     = std::max(b.upper[k], round_up(y));
+              }
+          }
+      }
+
+      inline void
+      enlarge(BoundingBox &b, const double margin)
+      {
+        if (margin > 0.)
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              b.lower[k] = round_down(b.lower[k] - margin);
+              b.upper[k] = round_up(b.upper[k] + margin);
+            }
+      }
+
       inline void
       unite(BoundingBox &a, const BoundingBox &b)
       {
@@ -98,6 +140,69 @@ namespace estep
       groups = std::move(exclusion_groups);
       nodes.clear();
       order.clear();
+      // The points of each group, where groups have 16 triangles or more on
+      // average.
+      group_point_start.clear();
+      group_points.clear();
+      if (groups.empty())
+        return;
+      const unsigned int n_groups =
+        *std::max_element(groups.begin(), groups.end()) + 1;
+      if (16 * std::size_t(n_groups) > triangles.size())
+        return;
+      std::vector<std::pair<unsigned int, unsigned int>> group_and_point;
+      for (unsigned int t = 0; t < triangles.size(); ++t)
+        for (const unsigned int i : triangles[t])
+          group_and_point.emplace_back(groups[t], i);
+      std::sort(group_and_point.begin(), group_and_point.end());
+      group_and_point.erase(std::unique(group_and_point.begin(),
+                                        group_and_point.end()),
+                            group_and_point.end());
+      group_point_start.assign(n_groups + 1, 0);
+      for (const auto &[group, point] : group_and_point)
+        {
+          ++group_point_start[group + 1];
+          group_points.push_back(point);
+        }
+      for (unsigned int g = 0; g < n_groups; ++g)
+        group_point_start[g + 1] += group_point_start[g];
+    }
+
+
+
+    std::vector<bool>
+    BoundingVolumeHierarchy::isolated_groups(const double *q,
+                                             const double *v,
+                                             const double  s_max,
+                                             const double  margin) const
+    {
+      if (group_point_start.empty())
+        return {};
+      const unsigned int       n_groups = group_point_start.size() - 1;
+      std::vector<BoundingBox> box(n_groups, empty_box());
+      for (unsigned int g = 0; g < n_groups; ++g)
+        {
+          for (unsigned int p = group_point_start[g];
+               p < group_point_start[g + 1];
+               ++p)
+            add_point(box[g], q, v, s_max, group_points[p]);
+          enlarge(box[g], margin);
+        }
+      // Sweep along x: in the order of their lower ends, each box meets
+      // only boxes that start before it ends.
+      std::vector<unsigned int> by_x(n_groups);
+      std::iota(by_x.begin(), by_x.end(), 0u);
+      std::sort(by_x.begin(), by_x.end(), [&](unsigned int a, unsigned int b) {
+        return box[a].lower[0] < box[b].lower[0];
+      });
+      std::vector<bool> isolated(n_groups, true);
+      for (unsigned int a = 0; a < n_groups; ++a)
+        for (unsigned int b = a + 1;
+             b < n_groups && box[by_x[b]].lower[0] <= box[by_x[a]].upper[0];
+             ++b)
+          if (box[by_x[a]].overlaps(box[by_x[b]]))
+            isolated[by_x[a]] = isolated[by_x[b]] = false;
+      return isolated;
     }
 
 
@@ -107,7 +212,8 @@ namespace estep
                                            const double     *v,
                                            const std::size_t n,
                                            const double      s_max,
-                                           const double      margin)
+                                           const double      margin,
+                                           const bool skip_isolated_groups)
     {
       if (!triangles.empty() && 3 * std::size_t(max_index) + 2 >= n)
         throw std::invalid_argument(
@@ -119,6 +225,8 @@ namespace estep
         throw std::invalid_argument(
           "BoundingVolumeHierarchy: margin and s_max must be non-negative");
       boxes.resize(triangles.size());
+      isolated = skip_isolated_groups ? isolated_groups(q, v, s_max, margin) :
+                                        std::vector<bool>();
       // Each box on its own: in parallel blocks, the same bits on any number
       // of threads.
       const unsigned int n_triangles = triangles.size();
@@ -127,30 +235,12 @@ namespace estep
         for (unsigned int t = range.begin; t < range.end; ++t)
           {
             BoundingBox &b = boxes[t];
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                b.lower[k] = std::numeric_limits<double>::infinity();
-                b.upper[k] = -std::numeric_limits<double>::infinity();
-              }
+            b              = empty_box();
+            if (!isolated.empty() && isolated[groups[t]])
+              continue;
             for (const unsigned int i : triangles[t])
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const double x = q[3 * i + k];
-                  b.lower[k]     = std::min(b.lower[k], x);
-                  b.upper[k]     = std::max(b.upper[k], x);
-                  if (v != nullptr)
-                    {
-                      const double y = x + s_max * v[3 * i + k];
-                      b.lower[k]     = std::min(b.lower[k], round_down(y));
-                      b.upper[k]     = std::max(b.upper[k], round_up(y));
-                    }
-                }
-            if (margin > 0.)
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  b.lower[k] = round_down(b.lower[k] - margin);
-                  b.upper[k] = round_up(b.upper[k] + margin);
-                }
+              add_point(b, q, v, s_max, i);
+            enlarge(b, margin);
           }
       });
     }
@@ -334,20 +424,25 @@ namespace estep
     void
     BoundingVolumeHierarchy::refit_tree()
     {
-      // Boxes and triangles in tree order, for cache-friendly leaf tests.
+      // Boxes in tree order, for cache-friendly leaf tests, gathered leaf by
+      // leaf. Children come after their parent: a backward sweep visits
+      // children first. A subtree of a group alone gets an empty box
+      // without a look at its triangles, which the descent never enters.
       ordered_boxes.resize(order.size());
-      for (std::size_t i = 0; i < order.size(); ++i)
-        ordered_boxes[i] = boxes[order[i]];
-      // Children come after their parent: a backward sweep visits children
-      // first.
       for (std::size_t j = nodes.size(); j-- > 0;)
         {
           Node &node = nodes[j];
-          if (node.first_child == 0)
+          if (!isolated.empty() && node.group != mixed_groups &&
+              isolated[node.group])
+            node.box = empty_box();
+          else if (node.first_child == 0)
             {
-              node.box = ordered_boxes[node.begin];
-              for (unsigned int i = node.begin + 1; i < node.end; ++i)
-                unite(node.box, ordered_boxes[i]);
+              node.box = empty_box();
+              for (unsigned int i = node.begin; i < node.end; ++i)
+                {
+                  ordered_boxes[i] = boxes[order[i]];
+                  unite(node.box, ordered_boxes[i]);
+                }
             }
           else
             {
@@ -364,7 +459,7 @@ namespace estep
                                    const std::size_t n,
                                    const double      margin)
     {
-      compute_boxes(q, nullptr, n, 0., margin);
+      compute_boxes(q, nullptr, n, 0., margin, false);
       build_tree();
     }
 
@@ -377,7 +472,7 @@ namespace estep
                                          const double      s_max,
                                          const double      margin)
     {
-      compute_boxes(q, v, n, s_max, margin);
+      compute_boxes(q, v, n, s_max, margin, false);
       build_tree();
     }
 
@@ -398,7 +493,7 @@ namespace estep
     {
       if (!is_built() || rebuild_due())
         return build(q, n, margin);
-      compute_boxes(q, nullptr, n, 0., margin);
+      compute_boxes(q, nullptr, n, 0., margin, true);
       refit_tree();
     }
 
@@ -413,7 +508,7 @@ namespace estep
     {
       if (!is_built() || rebuild_due())
         return build_swept(q, v, n, s_max, margin);
-      compute_boxes(q, v, n, s_max, margin);
+      compute_boxes(q, v, n, s_max, margin, true);
       refit_tree();
     }
 

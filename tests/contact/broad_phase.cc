@@ -375,6 +375,94 @@ TEST(BroadPhase, ExclusionGroupsLeaveOutExactlyThePairsWithinAGroup)
   EXPECT_THROW(spheres.set_exclusion_groups({0u, 1u}), std::invalid_argument);
 }
 
+TEST(BroadPhase, GroupsAloneAreSkippedWithoutLosingAPair)
+{
+  // On a refit, the triangles of a group whose box meets no other group's
+  // get empty boxes; the pairs found are still exactly those between groups
+  // of the triangles' own boxes (a hierarchy without groups, built for the
+  // same flight, gives them). Twelve spheres of 60 triangles in a row along
+  // x, 1.27 apart: the first reaches the second only by its sweep; the
+  // seventh, 0.77 from the sixth, meets it only within the margin.
+  std::vector<double>          q;
+  std::vector<TriangleIndices> tris;
+  std::vector<unsigned int>    groups;
+  for (unsigned int g = 0; g < 12; ++g)
+    {
+      const std::size_t first = tris.size();
+      estep_test::add_sphere(
+        q, tris, 3. * g - (g == 6 ? 0.5 : 0.), 0.1 * g, 0., 1., 6, 6);
+      groups.resize(tris.size(), g);
+      ASSERT_GE(tris.size() - first, 16u);
+    }
+  std::vector<double> v(q.size(), 0.);
+  const std::size_t   first_sphere_points = q.size() / 12;
+  for (std::size_t i = 0; i < first_sphere_points; i += 3)
+    v[i] = 1.5;
+  const auto pairs_between_groups = [&](const double margin) {
+    BoundingVolumeHierarchy plain(tris);
+    plain.build_swept(q.data(), v.data(), q.size(), 1., margin);
+    Pairs between;
+    for (const auto &[i, j] : brute_force(plain))
+      if (groups[i] != groups[j])
+        between.emplace_back(i, j);
+    return between;
+  };
+  BoundingVolumeHierarchy grouped(tris, groups);
+  grouped.build(q.data(), q.size());
+  for (const double margin : {0., 0.45})
+    {
+      grouped.refit_swept(q.data(), v.data(), q.size(), 1., margin);
+      const Pairs expected = pairs_between_groups(margin);
+      Pairs       found;
+      grouped.find_pairs(found);
+      EXPECT_EQ(sorted(found), sorted(expected)) << "margin " << margin;
+      EXPECT_GT(expected.size(), 0u);
+      // The last sphere is alone: its boxes were not computed.
+      const BoundingBox &alone = grouped.triangle_box(tris.size() - 1);
+      EXPECT_GT(alone.lower[0], alone.upper[0]) << "margin " << margin;
+      // Without the margin, only the sweep joins two groups.
+      unsigned int by_margin = 0;
+      for (const auto &[i, j] : expected)
+        {
+          const unsigned int joined = groups[i] + groups[j];
+          EXPECT_TRUE(joined == 1u || (margin > 0. && joined == 11u))
+            << groups[i] << " and " << groups[j] << ", margin " << margin;
+          by_margin += (joined == 11u);
+        }
+      EXPECT_EQ(by_margin > 0, margin > 0.);
+    }
+
+  // Groups whose boxes only touch, at x = 1: their triangles' boxes touch
+  // too, and every such pair is found.
+  std::vector<double>          flat;
+  std::vector<TriangleIndices> strips;
+  std::vector<unsigned int>    sides;
+  for (unsigned int side = 0; side < 2; ++side)
+    for (unsigned int i = 0; i < 16; ++i)
+      {
+        const unsigned int first = flat.size() / 3;
+        for (const double p : {0. + side,
+                               0. + i,
+                               0.,
+                               1. + side,
+                               0. + i,
+                               0.,
+                               0.5 + side,
+                               i + 0.5,
+                               1.})
+          flat.push_back(p);
+        strips.push_back({{first, first + 1, first + 2}});
+        sides.push_back(side);
+      }
+  BoundingVolumeHierarchy touching(strips, sides);
+  touching.build(flat.data(), flat.size());
+  touching.refit(flat.data(), flat.size());
+  Pairs found;
+  touching.find_pairs(found);
+  EXPECT_EQ(found.size(), 16u);
+  EXPECT_EQ(sorted(found), sorted(brute_force(touching)));
+}
+
 TEST(BroadPhase, DegenerateInputs)
 {
   // All triangles in one place (equal Morton codes: the tree is split in the

@@ -55,7 +55,13 @@ namespace estep
      * lie in one group is not descended against itself, nor two such
      * subtrees of the same group against each other. Without that, the query
      * over several bodies would visit every pair of neighbouring triangles
-     * within each body, only for them to be discarded.
+     * within each body, only for them to be discarded. They also spare the
+     * boxes of a group that is alone: where groups are bodies, on a refit, a
+     * group whose box (computed from its points, as a triangle's) meets no
+     * other group's box can have no pair, and its triangles get empty boxes,
+     * which the descent never enters; the pairs found, and their order, are
+     * those without this. A group's box costs a pass over its points, so this
+     * is done for groups of 16 triangles or more on average.
      *
      * Construction: the triangles are sorted by the Morton code (bit
      * interleaving of the quantised coordinates, 21 bits per axis) of their
@@ -206,7 +212,8 @@ namespace estep
         return groups;
       }
 
-      /** Box of triangle i as last computed. */
+      /** Box of triangle i as last computed (empty, lower above upper, for
+       * a triangle of a group alone after a refit). */
       const BoundingBox &
       triangle_box(const unsigned int i) const
       {
@@ -227,12 +234,26 @@ namespace estep
       /** Node::group of a node whose triangles lie in several groups. */
       static constexpr unsigned int mixed_groups = ~0u;
 
+      /** The boxes of the triangles for the configuration q, swept over
+       * q + s v, 0 <= s <= s_max, if v is given, and enlarged by margin;
+       * with @p skip_isolated_groups, empty boxes for the triangles of the
+       * groups that isolated_groups() finds, kept in isolated. */
       void
       compute_boxes(const double     *q,
                     const double     *v,
                     const std::size_t n,
                     const double      s_max,
-                    const double      margin);
+                    const double      margin,
+                    const bool        skip_isolated_groups);
+
+      /** Whether each group's box, computed from its points as a
+       * triangle's box is, meets no other group's box; empty if groups this
+       * small would not pay (see the class's documentation). */
+      std::vector<bool>
+      isolated_groups(const double *q,
+                      const double *v,
+                      const double  s_max,
+                      const double  margin) const;
 
       void
       sort_by_morton_code();
@@ -257,6 +278,13 @@ namespace estep
       /** The exclusion group of each triangle (empty: none), and in tree
        * order (each triangle its own group when there are none). */
       std::vector<unsigned int> groups, ordered_groups;
+      /** The points of the triangles of group g:
+       * group_points[group_point_start[g], group_point_start[g + 1]); empty
+       * where isolated_groups() would not pay. */
+      std::vector<unsigned int> group_point_start, group_points;
+      /** The groups alone at the last computation of the boxes (empty: none
+       * looked for). */
+      std::vector<bool> isolated;
       /** See set_rebuild_interval(); the refits since the last build. */
       unsigned int rebuild_interval = 0, refits_since_build = 0;
       // Scratch of the construction (kept to avoid reallocation on rebuild):
