@@ -140,10 +140,17 @@ namespace estep
       groups = std::move(exclusion_groups);
       nodes.clear();
       order.clear();
-      // The points of each group, where groups have 16 triangles or more on
-      // average.
       group_point_start.clear();
       group_points.clear();
+      group_points_indexed = false;
+    }
+
+
+
+    void
+    BoundingVolumeHierarchy::index_group_points()
+    {
+      group_points_indexed = true;
       if (groups.empty())
         return;
       const unsigned int n_groups =
@@ -225,6 +232,8 @@ namespace estep
         throw std::invalid_argument(
           "BoundingVolumeHierarchy: margin and s_max must be non-negative");
       boxes.resize(triangles.size());
+      if (skip_isolated_groups && !group_points_indexed)
+        index_group_points();
       isolated = skip_isolated_groups ? isolated_groups(q, v, s_max, margin) :
                                         std::vector<bool>();
       // Each box on its own: in parallel blocks, the same bits on any number

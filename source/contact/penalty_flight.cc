@@ -609,7 +609,7 @@ namespace estep
       : contact(contact)
       , q(q, q + n)
       , v(v, v + n)
-      , bvh(contact.get_triangles(), contact.get_exclusion_groups())
+      , bvh(contact.hierarchy())
       , swept_boxes(contact.get_triangles().size())
       , box_query(contact.get_triangles().size(), 0)
     {
@@ -632,14 +632,15 @@ namespace estep
         std::numeric_limits<double>::min();
       if (!(cached && a >= cache_a && b <= cache_b))
         {
-          // A broad phase over [a, a + 4 (b - a)]: the search examines [a, b]
-          // and its parts, then the next, twice longer window.
+          // A broad phase over [a, a + 4 (b - a)], the contact's hierarchy
+          // refitted: the search examines [a, b] and its parts, then the
+          // next, twice longer window.
           const double      end = a + 4. * (b - a);
           const std::size_t n   = q.size();
           scratch.resize(n);
           for (std::size_t i = 0; i < n; ++i)
             scratch[i] = q[i] + a * v[i];
-          bvh.build_swept(scratch.data(),
+          bvh.refit_swept(scratch.data(),
                           v.data(),
                           n,
                           end - a,

@@ -476,8 +476,8 @@ TEST(TriangleIntersection, IntersectingInGeneralPositionCross)
   unsigned int       n_intersect = 0;
   for (unsigned int i = 0; i < n; ++i)
     {
-      const Triangle3 T0 = random_triangle(rng, 1., {{0., 0., 0.}});
-      const Triangle3 T1 = random_triangle(rng, 1., {{0., 0., 0.}});
+      const Triangle3 T0        = random_triangle(rng, 1., {{0., 0., 0.}});
+      const Triangle3 T1        = random_triangle(rng, 1., {{0., 0., 0.}});
       const bool      intersect = triangles_intersect(T0, T1);
       n_intersect += intersect;
       EXPECT_EQ(triangles_cross(T0, T1, true), intersect) << describe(T0, T1);

@@ -278,10 +278,18 @@ namespace estep
       /** The exclusion group of each triangle (empty: none), and in tree
        * order (each triangle its own group when there are none). */
       std::vector<unsigned int> groups, ordered_groups;
+      /** Lists the points of each group (on the first refit, so that a
+       * hierarchy that is only built, once per flight, never pays for it),
+       * where groups have 16 triangles or more on average. */
+      void
+      index_group_points();
+
       /** The points of the triangles of group g:
        * group_points[group_point_start[g], group_point_start[g + 1]); empty
        * where isolated_groups() would not pay. */
       std::vector<unsigned int> group_point_start, group_points;
+      /** Whether index_group_points() has run since the groups were set. */
+      bool group_points_indexed = false;
       /** The groups alone at the last computation of the boxes (empty: none
        * looked for). */
       std::vector<bool> isolated;

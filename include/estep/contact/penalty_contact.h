@@ -104,6 +104,14 @@ namespace estep
         return bvh.get_exclusion_groups();
       }
 
+      /** The broad phase's hierarchy as last refitted: a flight starts from
+       * a copy of it, whose topology it keeps. */
+      const BoundingVolumeHierarchy &
+      hierarchy() const
+      {
+        return bvh;
+      }
+
       /** Rebuild the hierarchy every this many refits (default 64; 0:
        * never). */
       void
