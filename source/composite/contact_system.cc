@@ -942,40 +942,46 @@ namespace estep
   {
     const double                           *x     = q.data();
     const std::vector<contact::BoundingBox> boxes = body_boxes(x);
-    for (unsigned int entered = 0; entered < bodies.size(); ++entered)
-      for (unsigned int entering = 0; entering < bodies.size(); ++entering)
-        {
-          if (entering == entered)
-            continue;
-          // The box of the body that might be entered, shrunk by the limit:
-          // a point outside it is not that deep inside the body. No point of
-          // a body whose box misses it is.
-          const double         limit = penetration_limit(entered, entering);
-          contact::BoundingBox deep  = boxes[entered];
-          bool                 empty = false;
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              deep.lower[c] += limit;
-              deep.upper[c] -= limit;
-              empty = empty || !(deep.lower[c] <= deep.upper[c]);
-            }
-          if (empty || !deep.overlaps(boxes[entering]))
-            continue;
-          for (const unsigned int i : boundary_points[entering])
-            {
-              const contact::Point3 p      = contact::point_at(x, i);
-              bool                  in_box = true;
-              for (unsigned int c = 0; c < 3; ++c)
-                in_box =
-                  in_box && p[c] >= deep.lower[c] && p[c] <= deep.upper[c];
-              if (!in_box)
-                continue;
-              const contact::PointAndSurface where = contact::locate_point(
-                p, x, triangles, body_triangles[entered], limit);
-              if (where.distance > limit && where.winding_number > 0.5)
-                return Penetration{entering, entered, i, where.distance, limit};
-            }
-        }
+    // The bodies whose boxes overlap, both ways, in the order of a loop
+    // over every pair: no point of a body whose box misses another's is
+    // inside it.
+    std::vector<std::pair<unsigned int, unsigned int>> candidates;
+    for (const auto &[a, b] : contact::overlapping_pairs(boxes))
+      {
+        candidates.emplace_back(a, b);
+        candidates.emplace_back(b, a);
+      }
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto &[entered, entering] : candidates)
+      {
+        // The box of the body that might be entered, shrunk by the limit:
+        // a point outside it is not that deep inside the body. No point of
+        // a body whose box misses it is.
+        const double         limit = penetration_limit(entered, entering);
+        contact::BoundingBox deep  = boxes[entered];
+        bool                 empty = false;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            deep.lower[c] += limit;
+            deep.upper[c] -= limit;
+            empty = empty || !(deep.lower[c] <= deep.upper[c]);
+          }
+        if (empty || !deep.overlaps(boxes[entering]))
+          continue;
+        for (const unsigned int i : boundary_points[entering])
+          {
+            const contact::Point3 p      = contact::point_at(x, i);
+            bool                  in_box = true;
+            for (unsigned int c = 0; c < 3; ++c)
+              in_box = in_box && p[c] >= deep.lower[c] && p[c] <= deep.upper[c];
+            if (!in_box)
+              continue;
+            const contact::PointAndSurface where = contact::locate_point(
+              p, x, triangles, body_triangles[entered], limit);
+            if (where.distance > limit && where.winding_number > 0.5)
+              return Penetration{entering, entered, i, where.distance, limit};
+          }
+      }
     return std::nullopt;
   }
 

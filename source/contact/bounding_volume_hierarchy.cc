@@ -195,21 +195,32 @@ namespace estep
             add_point(box[g], q, v, s_max, group_points[p]);
           enlarge(box[g], margin);
         }
-      // Sweep along x: in the order of their lower ends, each box meets
-      // only boxes that start before it ends.
-      std::vector<unsigned int> by_x(n_groups);
+      std::vector<bool> isolated(n_groups, true);
+      for (const auto &[a, b] : overlapping_pairs(box))
+        isolated[a] = isolated[b] = false;
+      return isolated;
+    }
+
+
+
+    std::vector<std::pair<unsigned int, unsigned int>>
+    overlapping_pairs(const std::vector<BoundingBox> &boxes)
+    {
+      const unsigned int        n = boxes.size();
+      std::vector<unsigned int> by_x(n);
       std::iota(by_x.begin(), by_x.end(), 0u);
       std::sort(by_x.begin(), by_x.end(), [&](unsigned int a, unsigned int b) {
-        return box[a].lower[0] < box[b].lower[0];
+        return boxes[a].lower[0] < boxes[b].lower[0];
       });
-      std::vector<bool> isolated(n_groups, true);
-      for (unsigned int a = 0; a < n_groups; ++a)
+      std::vector<std::pair<unsigned int, unsigned int>> pairs;
+      for (unsigned int a = 0; a < n; ++a)
         for (unsigned int b = a + 1;
-             b < n_groups && box[by_x[b]].lower[0] <= box[by_x[a]].upper[0];
+             b < n && boxes[by_x[b]].lower[0] <= boxes[by_x[a]].upper[0];
              ++b)
-          if (box[by_x[a]].overlaps(box[by_x[b]]))
-            isolated[by_x[a]] = isolated[by_x[b]] = false;
-      return isolated;
+          if (boxes[by_x[a]].overlaps(boxes[by_x[b]]))
+            pairs.push_back(std::minmax(by_x[a], by_x[b]));
+      std::sort(pairs.begin(), pairs.end());
+      return pairs;
     }
 
 

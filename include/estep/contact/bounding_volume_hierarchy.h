@@ -301,6 +301,15 @@ namespace estep
       std::vector<unsigned int>  order_buffer;
     };
 
+    /**
+     * The pairs (a, b), a < b, of the closed boxes that overlap, in
+     * increasing order, by a sweep along x: the boxes in the order of their
+     * lower ends, each compared only with those that start before it ends.
+     * For few boxes, such as one per body.
+     */
+    std::vector<std::pair<unsigned int, unsigned int>>
+    overlapping_pairs(const std::vector<BoundingBox> &boxes);
+
     /** Whether two triangles share a vertex index. */
     inline bool
     share_vertex(const TriangleIndices &a, const TriangleIndices &b)
