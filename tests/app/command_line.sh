@@ -360,6 +360,8 @@ grep -q '"warnings": \[\]' verlet/summary.json || fail "summary.json of the refe
 # penetrated, exit code 5.
 expect 5 "A body passed through contact at t = 0.2[0-9]*: a boundary point of body 2 \(point [0-9]+\) lies 0.5[0-9]* inside body 1, deeper than the longest boundary edge 0.508[0-9]* of the two meshes; the penalty \(Contact/Penalty parameter = 1e\+300, smaller is stiffer\) is too soft to keep them apart\.$" -- "${balls[@]}" -s "Contact/Penalty parameter=1e300" -s "Time integration/End time=0.3" -s "Output directory=passed"
 grep -q '"status": "penetrated"' passed/summary.json || fail "summary.json of a penetrated run lacks status penetrated"
+# The same with the first ball passing into the second, twice its size: found that way round too.
+expect 5 "A body passed through contact at t = 0.[0-9]*: a boundary point of body 1 \(point [0-9]+\) lies [0-9.]+ inside body 2" -- "${balls[@]}" -s "Contact/Penalty parameter=1e300" -s "Colliding balls/Size ratio=2" -s "Time integration/End time=0.6" -s "Output directory=passed_into_larger"
 # A penalty whose energy in an element-deep intersection is below the energy step: a flight
 # could carry the bodies through each other unseen; energy-stepping warns at the start.
 expect 0 "warning: Time integration/Energy stepping/Energy step: h = 1000 exceeds the energy 129.* that the contact penalty stores in an intersection one boundary edge deep" -- "${balls[@]}" -s "Contact/Penalty parameter=1e-3" -s "Time integration/End time=0.001" -s "Output directory=soft"
