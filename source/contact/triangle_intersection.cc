@@ -293,7 +293,9 @@ namespace estep
                     const Triangle3 &T1,
                     const bool       T1_bounds_a_body)
     {
-      int     s0[3], s1[3]; // the sides of T0's points of T1's plane, and so on
+      // s0: the side of T1's plane that each point of T0 lies on; s1: the
+      // converse.
+      int     s0[3], s1[3];
       EdgeRef start, end;
       switch (intersect_core(T0, T1, s0, s1, start, end))
         {
