@@ -874,13 +874,6 @@ namespace estep
           }
     // A point outside the box of a body's boundary is outside the body.
     const std::vector<contact::BoundingBox> boxes = body_boxes(q.data());
-    const auto in_box = [](const contact::BoundingBox &box,
-                           const contact::Point3      &p) {
-      for (unsigned int c = 0; c < 3; ++c)
-        if (!(p[c] >= box.lower[c] && p[c] <= box.upper[c]))
-          return false;
-      return true;
-    };
     for (unsigned int outer = 0; outer < bodies.size(); ++outer)
       {
         // Closer to the boundary than this, a vertex touches it.
@@ -893,7 +886,7 @@ namespace estep
             for (const unsigned int vertex : piece.vertices)
               {
                 const contact::Point3 p = contact::point_at(q.data(), vertex);
-                if (!in_box(boxes[outer], p))
+                if (!boxes[outer].contains(p))
                   break;
                 const contact::PointAndSurface where = contact::locate_point(
                   p, q.data(), triangles, body_triangles[outer], on_boundary);
@@ -970,11 +963,8 @@ namespace estep
           continue;
         for (const unsigned int i : boundary_points[entering])
           {
-            const contact::Point3 p      = contact::point_at(x, i);
-            bool                  in_box = true;
-            for (unsigned int c = 0; c < 3; ++c)
-              in_box = in_box && p[c] >= deep.lower[c] && p[c] <= deep.upper[c];
-            if (!in_box)
+            const contact::Point3 p = contact::point_at(x, i);
+            if (!deep.contains(p))
               continue;
             const contact::PointAndSurface where = contact::locate_point(
               p, x, triangles, body_triangles[entered], limit);
@@ -990,18 +980,11 @@ namespace estep
   std::vector<contact::BoundingBox>
   ContactSystem::body_boxes(const double *x) const
   {
-    std::vector<contact::BoundingBox> boxes(bodies.size());
+    std::vector<contact::BoundingBox> boxes(bodies.size(),
+                                            contact::BoundingBox::empty());
     for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        boxes[b].lower.fill(std::numeric_limits<double>::infinity());
-        boxes[b].upper.fill(-std::numeric_limits<double>::infinity());
-        for (const unsigned int i : boundary_points[b])
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              boxes[b].lower[c] = std::min(boxes[b].lower[c], x[3 * i + c]);
-              boxes[b].upper[c] = std::max(boxes[b].upper[c], x[3 * i + c]);
-            }
-      }
+      for (const unsigned int i : boundary_points[b])
+        boxes[b].add(contact::point_at(x, i));
     return boxes;
   }
 

@@ -58,13 +58,6 @@ namespace estep
                (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
       }
 
-      inline BoundingBox
-      empty_box()
-      {
-        constexpr double inf = std::numeric_limits<double>::infinity();
-        return {{{inf, inf, inf}}, {{-inf, -inf, -inf}}};
-      }
-
       // Adds point i at q, and at q + s_max v if v is given (rounded
       // outward), to the box.
       inline void
@@ -186,7 +179,7 @@ namespace estep
       if (group_point_start.empty())
         return {};
       const unsigned int       n_groups = group_point_start.size() - 1;
-      std::vector<BoundingBox> box(n_groups, empty_box());
+      std::vector<BoundingBox> box(n_groups, BoundingBox::empty());
       for (unsigned int g = 0; g < n_groups; ++g)
         {
           for (unsigned int p = group_point_start[g];
@@ -219,7 +212,6 @@ namespace estep
              ++b)
           if (boxes[by_x[a]].overlaps(boxes[by_x[b]]))
             pairs.push_back(std::minmax(by_x[a], by_x[b]));
-      std::sort(pairs.begin(), pairs.end());
       return pairs;
     }
 
@@ -255,7 +247,7 @@ namespace estep
         for (unsigned int t = range.begin; t < range.end; ++t)
           {
             BoundingBox &b = boxes[t];
-            b              = empty_box();
+            b              = BoundingBox::empty();
             if (!isolated.empty() && isolated[groups[t]])
               continue;
             for (const unsigned int i : triangles[t])
@@ -454,10 +446,10 @@ namespace estep
           Node &node = nodes[j];
           if (!isolated.empty() && node.group != mixed_groups &&
               isolated[node.group])
-            node.box = empty_box();
+            node.box = BoundingBox::empty();
           else if (node.first_child == 0)
             {
-              node.box = empty_box();
+              node.box = BoundingBox::empty();
               for (unsigned int i = node.begin; i < node.end; ++i)
                 {
                   ordered_boxes[i] = boxes[order[i]];

@@ -666,8 +666,7 @@ namespace estep
         if (box_query[t] == n_queries)
           return box;
         box_query[t] = n_queries;
-        box.lower.fill(infinity);
-        box.upper.fill(-infinity);
+        box          = BoundingBox::empty();
         for (const unsigned int i : tris[t])
           for (unsigned int k = 0; k < 3; ++k)
             for (const double s : {a, b})

@@ -3,9 +3,11 @@
 
 #include <estep/contact/geometry.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -18,6 +20,33 @@ namespace estep
     {
       std::array<double, 3> lower;
       std::array<double, 3> upper;
+
+      /** The empty box (lower above upper), which adding points grows. */
+      static BoundingBox
+      empty()
+      {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        return {{{inf, inf, inf}}, {{-inf, -inf, -inf}}};
+      }
+
+      /** Grow the box to hold @p p. */
+      void
+      add(const Point3 &p)
+      {
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            lower[k] = std::min(lower[k], p[k]);
+            upper[k] = std::max(upper[k], p[k]);
+          }
+      }
+
+      /** Whether the closed box holds @p p. */
+      bool
+      contains(const Point3 &p) const
+      {
+        return lower[0] <= p[0] && p[0] <= upper[0] && lower[1] <= p[1] &&
+               p[1] <= upper[1] && lower[2] <= p[2] && p[2] <= upper[2];
+      }
 
       /** Whether the closed boxes share a point. */
       bool
@@ -302,8 +331,8 @@ namespace estep
     };
 
     /**
-     * The pairs (a, b), a < b, of the closed boxes that overlap, in
-     * increasing order, by a sweep along x: the boxes in the order of their
+     * The pairs (a, b), a < b, of the closed boxes that overlap, in no
+     * particular order, by a sweep along x: the boxes in the order of their
      * lower ends, each compared only with those that start before it ends.
      * For few boxes, such as one per body.
      */
