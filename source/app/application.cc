@@ -675,17 +675,21 @@ namespace estep
       settings.energy_drift_warning    = parameters.energy_drift_warning;
       settings.checkpoint_interval     = parameters.checkpoint_interval;
       settings.checkpoint_wall_seconds = parameters.checkpoint_wall_seconds;
-      if (this_rank() == 0 && (parameters.checkpoint_interval > 0. ||
-                               parameters.checkpoint_wall_seconds > 0.))
+      // Every rank takes part in a checkpoint (the integrator completes its
+      // state), the first writes it.
+      if (parameters.checkpoint_interval > 0. ||
+          parameters.checkpoint_wall_seconds > 0.)
         settings.write_checkpoint = [&](const TimeLoopState &state) {
-          write_checkpoint((std::filesystem::path(parameters.output_directory) /
-                            checkpoint_file_name)
-                             .string(),
-                           parameters_as_read,
-                           initial_state,
-                           state,
-                           integrator,
-                           postprocessors);
+          if (this_rank() == 0)
+            write_checkpoint((std::filesystem::path(
+                                parameters.output_directory) /
+                              checkpoint_file_name)
+                               .string(),
+                             parameters_as_read,
+                             initial_state,
+                             state,
+                             integrator,
+                             postprocessors);
         };
       std::vector<RunObserver *> observers;
       for (const auto &postprocessor : postprocessors)

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi_noncontiguous_partitioner.templates.h>
 
 #include <estep/base/distributed_blocks.h>
 #include <estep/fem/distributed_cell_data.h>
@@ -196,7 +197,10 @@ namespace estep
   ElasticBody::energy(const Vector &q) const
   {
     AssertDimension(q.size(), n_dofs());
-    internal::copy_padded(q.data(), q.size(), scratch_positions.data());
+    internal::copy_padded(q.data(),
+                          q.size(),
+                          scratch_positions.data(),
+                          kept_coordinates());
     // Per block: the volumetric energy and the sum of |Omega_e| (|F_e|^2 - 3).
     struct Terms
     {
@@ -232,12 +236,9 @@ namespace estep
            body_material->volumetric_energy(1.) * data.total_volume;
   }
 
-  void
-  ElasticBody::gradient(const Vector &q, Vector &g) const
+  const ElasticBody::GradientParts &
+  ElasticBody::current_gradient_parts() const
   {
-    AssertDimension(q.size(), n_dofs());
-    internal::copy_padded(q.data(), q.size(), scratch_positions.data());
-    g.reinit(n_dofs(), true);
     if (gradient_parts.threads != thread_count() ||
         gradient_parts.ranks != rank_count())
       {
@@ -245,7 +246,19 @@ namespace estep
         part_forces.assign(gradient_parts.parts.size(),
                            std::vector<double>(n_dofs() + 1));
       }
-    const GradientParts &shared = gradient_parts;
+    return gradient_parts;
+  }
+
+  const double *
+  ElasticBody::gradient_of_own_points(const Vector &q, Vector &g) const
+  {
+    AssertDimension(q.size(), n_dofs());
+    internal::copy_padded(q.data(),
+                          q.size(),
+                          scratch_positions.data(),
+                          kept_coordinates());
+    g.reinit(n_dofs(), true);
+    const GradientParts &shared = current_gradient_parts();
     const unsigned int  *points = shared.points.data() + shared.first;
     double              *mine   = g.data() + 3 * shared.first;
     if (!shared.in_order)
@@ -265,16 +278,79 @@ namespace estep
         for (unsigned int i = 0; i < 3; ++i)
           mine[3 * k + i] = forces[3 * points[k] + i];
     });
+    return mine;
+  }
+
+  void
+  ElasticBody::gather_own_points(const double *own, Vector &x) const
+  {
+    const GradientParts &shared = current_gradient_parts();
     if (shared.in_order)
       {
-        gather_from_all_ranks(mine, shared.points_per_rank, g.data(), 3);
+        gather_from_all_ranks(own, shared.points_per_rank, x.data(), 3);
         return;
       }
     scratch_all.resize(n_dofs());
-    gather_from_all_ranks(mine, shared.points_per_rank, scratch_all.data(), 3);
+    gather_from_all_ranks(own, shared.points_per_rank, scratch_all.data(), 3);
     for (unsigned int k = 0; k < data.n_points; ++k)
       for (unsigned int i = 0; i < 3; ++i)
-        g[3 * shared.points[k] + i] = scratch_all[3 * k + i];
+        x[3 * shared.points[k] + i] = scratch_all[3 * k + i];
+  }
+
+  void
+  ElasticBody::gradient(const Vector &q, Vector &g) const
+  {
+    gather_own_points(gradient_of_own_points(q, g), g);
+  }
+
+  const std::vector<BlockRange> *
+  ElasticBody::kept_coordinates() const
+  {
+    return rank_count() > 1 ? &current_gradient_parts().kept : nullptr;
+  }
+
+  void
+  ElasticBody::kept_gradient(const Vector &q, Vector &g) const
+  {
+    const double *const  mine   = gradient_of_own_points(q, g);
+    const GradientParts &shared = gradient_parts;
+    if (shared.ranks == 1)
+      return;
+    const std::size_t n_mine =
+      3 * std::size_t(shared.points_per_rank[this_rank()]);
+    if (!shared.in_order)
+      for (std::size_t k = 0; k < n_mine / 3; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          g[3 * shared.points[shared.first + k] + i] = mine[3 * k + i];
+    if (ghost_exchange_ranks != shared.ranks)
+      {
+        // This rank's points' coordinates, in the order of mine.
+        std::vector<dealii::types::global_dof_index> owned(n_mine);
+        for (std::size_t k = 0; k < n_mine / 3; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            owned[3 * k + i] = 3 * shared.points[shared.first + k] + i;
+        ghost_exchange =
+          std::make_unique<dealii::Utilities::MPI::NoncontiguousPartitioner>(
+            owned, shared.ghosts, MPI_COMM_WORLD);
+        ghost_exchange_ranks = shared.ranks;
+      }
+    ghost_exchange->export_to_ghosted_array(
+      dealii::ArrayView<const double>(mine, n_mine),
+      dealii::ArrayView<double>(g.data(), g.size()));
+  }
+
+  void
+  ElasticBody::complete_state(Vector &x) const
+  {
+    const GradientParts &shared = current_gradient_parts();
+    if (shared.ranks == 1)
+      return;
+    const unsigned int n_mine = shared.points_per_rank[this_rank()];
+    scratch_mine.resize(3 * std::size_t(n_mine));
+    for (unsigned int k = 0; k < n_mine; ++k)
+      for (unsigned int i = 0; i < 3; ++i)
+        scratch_mine[3 * k + i] = x[3 * shared.points[shared.first + k] + i];
+    gather_own_points(scratch_mine.data(), x);
   }
 
   ElasticBody::GradientParts::GradientParts(const P1CellData  &data,
@@ -359,6 +435,47 @@ namespace estep
             else
               part.cells.push_back({chunk, end});
           }
+      }
+    if (ranks > 1)
+      {
+        // The coordinates this rank keeps: the points of the cells it
+        // computes (those of its blocks, and those its points' gradient
+        // needs: its own points among them), and its blocks of coordinates;
+        // in ranges cut at the blocks' ends, which the threads share.
+        const unsigned int n_coordinates = 3 * data.n_points;
+        std::vector<char>  keep(n_coordinates, 0);
+        const auto         keep_points = [&](const BlockRange cells) {
+          for (unsigned int e = cells.begin;
+               e < std::min(cells.end, data.n_cells);
+               ++e)
+            for (unsigned int a = 0; a < 4; ++a)
+              std::fill_n(keep.begin() + 3 * data.point[a][data.at(e)], 3, 1);
+        };
+        if (mine.begin < mine.end)
+          keep_points({block_range(mine.begin, n_padded).begin,
+                       block_range(mine.end - 1, n_padded).end});
+        for (const Part &part : parts)
+          for (const BlockRange &cells : part.cells)
+            keep_points(cells);
+        const BlockRange coordinate_blocks =
+          rank_blocks(n_blocks(n_coordinates), me);
+        if (coordinate_blocks.begin < coordinate_blocks.end)
+          std::fill(keep.begin() +
+                      block_range(coordinate_blocks.begin, n_coordinates).begin,
+                    keep.begin() +
+                      block_range(coordinate_blocks.end - 1, n_coordinates).end,
+                    1);
+        ghosts.assign(n_coordinates, dealii::numbers::invalid_dof_index);
+        for (unsigned int i = 0; i < n_coordinates; ++i)
+          if (keep[i])
+            {
+              if (point_rank[i / 3] != me)
+                ghosts[i] = i;
+              if (!kept.empty() && kept.back().end == i && i % block_size != 0)
+                ++kept.back().end;
+              else
+                kept.push_back({i, i + 1});
+            }
       }
     // A part whose blocks bring no point of their own (the cells of a short
     // last block may all have their points in earlier cells) has nothing to

@@ -268,12 +268,14 @@ namespace estep
     c2      = c1 + n_held;
     c3      = c2 + n_held;
     scratch = c3 + n_held;
-    // Not value-initialised either (copy_padded() writes every entry).
+    // Not value-initialised either (copy_padded() writes every entry that
+    // the cells this rank computes read).
     const std::unique_ptr<double[]> padded(new double[2 * (q.size() + 1)]);
     double *const padded_q = padded.get(), *const padded_v =
                                              padded_q + q.size() + 1;
-    internal::copy_padded(q.data(), q.size(), padded_q);
-    internal::copy_padded(v.data(), v.size(), padded_v);
+    const std::vector<BlockRange> *const kept = body.kept_coordinates();
+    internal::copy_padded(q.data(), q.size(), padded_q, kept);
+    internal::copy_padded(v.data(), v.size(), padded_v, kept);
     const QuadraticSums sums = sum_over_distributed_blocks<QuadraticSums>(
       n_blocks(n_padded), [&](const unsigned int b) {
         return build_cubics(body.cell_data(),

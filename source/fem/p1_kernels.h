@@ -71,15 +71,26 @@ namespace estep
     /**
      * Copy the @p n point-major values @p x to @p copy, which holds n + 1, and
      * set the last to zero: the lane kernels load four doubles per point. In
-     * parallel blocks.
+     * parallel blocks; only the ranges @p kept if given (the coordinates an
+     * MPI rank keeps, MechanicalSystem::kept_coordinates(), which hold every
+     * point of the cells it computes).
      */
     inline void
-    copy_padded(const double *x, const unsigned int n, double *copy)
+    copy_padded(const double                  *x,
+                const unsigned int             n,
+                double                        *copy,
+                const std::vector<BlockRange> *kept = nullptr)
     {
-      for_each_block(n_blocks(n), [&](const unsigned int b) {
-        const BlockRange range = block_range(b, n);
+      const auto copy_range = [&](const BlockRange range) {
         std::copy(x + range.begin, x + range.end, copy + range.begin);
-      });
+      };
+      if (kept)
+        for_each_block(kept->size(),
+                       [&](const unsigned int i) { copy_range((*kept)[i]); });
+      else
+        for_each_block(n_blocks(n), [&](const unsigned int b) {
+          copy_range(block_range(b, n));
+        });
       copy[n] = 0.;
     }
 

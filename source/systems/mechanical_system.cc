@@ -50,6 +50,22 @@ namespace estep
                            "> provides no Hessian (tangent stiffness).");
   }
 
+  const std::vector<BlockRange> *
+  MechanicalSystem::kept_coordinates() const
+  {
+    return nullptr;
+  }
+
+  void
+  MechanicalSystem::kept_gradient(const Vector &q, Vector &g) const
+  {
+    gradient(q, g);
+  }
+
+  void
+  MechanicalSystem::complete_state(Vector &) const
+  {}
+
   std::vector<std::string>
   MechanicalSystem::observable_names() const
   {

@@ -1,5 +1,6 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/parallel_blocks.h>
 #include <estep/base/parameter_subsections.h>
 #include <estep/time_integration/energy_stepping.h>
@@ -21,6 +22,37 @@ namespace estep
      * length), in units of time: small, since the search doubles its
      * windows (about 20 more enclosures for a first step of order 1). */
     constexpr double first_window_of_a_run = 0x1p-20;
+
+    /** @p work(r) for the ranges r of coordinates that this rank keeps
+     * current (MechanicalSystem::kept_coordinates(): every coordinate, in
+     * blocks, unless the system's state is shared among MPI ranks), on the
+     * threads. */
+    template <typename Work>
+    void
+    for_each_kept_range(const MechanicalSystem &system, const Work &work)
+    {
+      const unsigned int n = system.n_dofs();
+      if (const std::vector<BlockRange> *kept = system.kept_coordinates())
+        for_each_block(kept->size(),
+                       [&](const unsigned int i) { work((*kept)[i]); });
+      else
+        for_each_block(n_blocks(n),
+                       [&](const unsigned int b) { work(block_range(b, n)); });
+    }
+
+    /** The sum of @p term(b) over the blocks b of coordinates, added in
+     * block order: on several MPI ranks that share the system's state, each
+     * computes those of its own blocks (which it keeps), and the terms are
+     * shared. The same bits on any number of threads and ranks. */
+    template <typename T, typename Term>
+    T
+    sum_over_coordinate_blocks(const MechanicalSystem &system, const Term &term)
+    {
+      const unsigned int n_coordinate_blocks = n_blocks(system.n_dofs());
+      return system.kept_coordinates() ?
+               sum_over_distributed_blocks<T>(n_coordinate_blocks, term) :
+               sum_over_blocks<T>(n_coordinate_blocks, term);
+    }
   } // namespace
 
 
@@ -280,11 +312,16 @@ namespace estep
 
     // The flight.
     t_previous     = t;
-    q_start        = q;
-    v_flight       = v;
     level_flight   = level;
     const double s = contact ? contact->s : s_level;
-    q.add(s, v);
+    for_each_kept_range(system, [&](const BlockRange kept) {
+      for (unsigned int i = kept.begin; i < kept.end; ++i)
+        {
+          q_start[i]  = q[i];
+          v_flight[i] = v[i];
+          q[i] += s * v[i];
+        }
+    });
     t = (s == horizon) ? t_limit : t + s;
     if (s > 0.)
       last_flight = s;
@@ -301,8 +338,8 @@ namespace estep
     else
       departure = Departure::interior;
 
-    const unsigned int finite_blocks = sum_over_blocks<unsigned int>(
-      n_blocks(v.size()), [&](const unsigned int b) {
+    const unsigned int finite_blocks = sum_over_coordinate_blocks<unsigned int>(
+      system, [&](const unsigned int b) {
         const BlockRange dofs = block_range(b, v.size());
         return unsigned(
           std::all_of(v.begin() + dofs.begin,
@@ -319,10 +356,35 @@ namespace estep
 
 
 
+  void
+  EnergyStepping::complete_state()
+  {
+    for (Vector *x : {&q, &v, &q_start, &v_flight})
+      system.complete_state(*x);
+  }
+
+
+
+  double
+  EnergyStepping::current_kinetic_energy() const
+  {
+    const Vector &inverse_mass = system.inverse_mass();
+    return 0.5 * sum_over_coordinate_blocks<double>(
+                   system, [&](const unsigned int b) {
+                     const BlockRange dofs  = block_range(b, v.size());
+                     double           twice = 0.;
+                     for (unsigned int i = dofs.begin; i < dofs.end; ++i)
+                       twice += v[i] * v[i] / inverse_mass[i];
+                     return twice;
+                   });
+  }
+
+
+
   double
   EnergyStepping::measure_force_mass_norm()
   {
-    system.gradient(q, gradient_buffer);
+    system.kept_gradient(q, gradient_buffer);
     return slope_and_mass_norm(gradient_buffer).second;
   }
 
@@ -331,7 +393,7 @@ namespace estep
   void
   EnergyStepping::jump_at_level(const int direction)
   {
-    system.gradient(q, gradient_buffer);
+    system.kept_gradient(q, gradient_buffer);
     ++n_gradients;
     const auto [a, m] = slope_and_mass_norm(gradient_buffer);
     if (!std::isfinite(a) || !std::isfinite(m))
@@ -424,7 +486,7 @@ namespace estep
     };
     const Vector &inverse_mass = system.inverse_mass();
     const Sums    sums =
-      sum_over_blocks<Sums>(n_blocks(v.size()), [&](const unsigned int b) {
+      sum_over_coordinate_blocks<Sums>(system, [&](const unsigned int b) {
         const BlockRange dofs = block_range(b, v.size());
         Sums             block{0., 0.};
         for (unsigned int i = dofs.begin; i < dofs.end; ++i)
@@ -443,9 +505,8 @@ namespace estep
   EnergyStepping::add_impulse(const double lambda, const Vector &g)
   {
     const Vector &inverse_mass = system.inverse_mass();
-    for_each_block(n_blocks(v.size()), [&](const unsigned int b) {
-      const BlockRange dofs = block_range(b, v.size());
-      for (unsigned int i = dofs.begin; i < dofs.end; ++i)
+    for_each_kept_range(system, [&](const BlockRange kept) {
+      for (unsigned int i = kept.begin; i < kept.end; ++i)
         v[i] += lambda * inverse_mass[i] * g[i];
     });
   }
@@ -456,7 +517,7 @@ namespace estep
   EnergyStepping::dense_output(const double time) const
   {
     Snapshot snapshot                  = dense_state(time);
-    snapshot.kinetic_energy            = kinetic_energy(system, v_flight);
+    snapshot.kinetic_energy            = kinetic_energy(system, snapshot.v);
     snapshot.potential_energy          = system.energy(snapshot.q);
     snapshot.terraced_potential_energy = level_height(level_flight);
     return snapshot;
@@ -487,7 +548,9 @@ namespace estep
         snapshot.q = q_start;
         snapshot.q.add(time - t_previous, v_flight);
       }
-    snapshot.v              = v_flight;
+    snapshot.v = v_flight;
+    system.complete_state(snapshot.q);
+    system.complete_state(snapshot.v);
     snapshot.kinetic_energy = snapshot.potential_energy =
       snapshot.terraced_potential_energy =
         std::numeric_limits<double>::quiet_NaN();

@@ -75,6 +75,20 @@ namespace estep
 
 
   void
+  TimeIntegrator::complete_state()
+  {}
+
+
+
+  double
+  TimeIntegrator::current_kinetic_energy() const
+  {
+    return kinetic_energy(system, v);
+  }
+
+
+
+  void
   TimeIntegrator::add_energies_to_summary(JsonObject &) const
   {}
 

@@ -1,3 +1,4 @@
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/interruption.h>
 #include <estep/time_integration/time_loop.h>
 
@@ -297,6 +298,7 @@ namespace estep
           }
       };
       const auto write_checkpoint = [&]() {
+        integrator.complete_state();
         settings.write_checkpoint(state);
         last_checkpoint = Clock::now();
       };
@@ -318,9 +320,14 @@ namespace estep
             checkpoints.skip_to(integrator.time());
             return true;
           }
-        return settings.checkpoint_wall_seconds > 0. &&
-               std::chrono::duration<double>(Clock::now() - last_checkpoint)
-                   .count() >= settings.checkpoint_wall_seconds;
+        if (!(settings.checkpoint_wall_seconds > 0.))
+          return false;
+        // The first rank's clock decides, for every rank (a checkpoint
+        // completes the state, which the ranks do together).
+        char due = std::chrono::duration<double>(Clock::now() - last_checkpoint)
+                     .count() >= settings.checkpoint_wall_seconds;
+        broadcast_from_first_rank(&due, 1);
+        return due != 0;
       };
 
       try
@@ -369,7 +376,7 @@ namespace estep
                   message << '.';
                   throw StalledRun(message.str());
                 }
-              const double T = kinetic_energy(system, integrator.velocity());
+              const double T = integrator.current_kinetic_energy();
               if (!std::isfinite(T) ||
                   (state.blowup_bound > 0. && T > state.blowup_bound))
                 {
@@ -439,6 +446,10 @@ namespace estep
           result.message = failure_message(integrator.time(),
                                            "an exception of an unknown type");
         }
+      // Every rank ends a run in the same state, unless it failed: an
+      // output of the first rank fails on it alone.
+      if (result.status != RunStatus::failed)
+        integrator.complete_state();
       result.largest_energy_drift      = state.largest_energy_drift;
       result.largest_energy_drift_time = state.largest_energy_drift_time;
       if (result.status != RunStatus::unstable &&

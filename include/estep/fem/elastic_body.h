@@ -1,6 +1,8 @@
 #ifndef estep_fem_elastic_body_h
 #define estep_fem_elastic_body_h
 
+#include <deal.II/base/types.h>
+
 #include <estep/base/parallel_blocks.h>
 #include <estep/fem/elastic_bodies.h>
 #include <estep/fem/p1_cell_data.h>
@@ -17,6 +19,10 @@ namespace dealii
 {
   template <int dim, int spacedim>
   class Triangulation;
+  namespace Utilities::MPI
+  {
+    class NoncontiguousPartitioner;
+  } // namespace Utilities::MPI
 } // namespace dealii
 
 namespace estep
@@ -97,6 +103,26 @@ namespace estep
 
     void
     gradient(const Vector &q, Vector &g) const override;
+
+    /**
+     * @name The state shared among MPI ranks
+     * On several ranks each keeps current the points of the cells it holds
+     * (its own and the chunks its points' gradient needs, see
+     * distributed_cell_data.h) and those of its blocks of coordinates. The
+     * gradient of the other ranks' points among them comes from the ranks
+     * that compute it (deal.II's Utilities::MPI::NoncontiguousPartitioner),
+     * instead of every point's from every rank. See MechanicalSystem.
+     * @{
+     */
+    const std::vector<BlockRange> *
+    kept_coordinates() const override;
+
+    void
+    kept_gradient(const Vector &q, Vector &g) const override;
+
+    void
+    complete_state(Vector &x) const override;
+    /** @} */
 
     /** An ElasticFreeFlight (see there) of this body along q + s v. */
     std::unique_ptr<FreeFlight>
@@ -276,8 +302,31 @@ namespace estep
         unsigned int lowest = 0, highest = 0;
       };
       std::vector<Part> parts;
+      /** On several ranks, the coordinates this rank keeps current (see
+       * kept_coordinates()). */
+      std::vector<BlockRange> kept;
+      /** And of these, the coordinates of other ranks' points: each is
+       * its own index, every other coordinate numbers::invalid_dof_index
+       * (the ghosts of ghost_exchange, in place in a state vector). */
+      std::vector<dealii::types::global_dof_index> ghosts;
     };
     mutable GradientParts gradient_parts;
+    /** The gradient parts for the current numbers of threads and ranks. */
+    const GradientParts &
+    current_gradient_parts() const;
+    /** This rank's points' gradient at @p q, into @p g where they are in
+     * place, else into scratch_mine; returns where they are. */
+    const double *
+    gradient_of_own_points(const Vector &q, Vector &g) const;
+    /** Every rank's points' values, each rank's @p own (3 per point, in
+     * the order of its points), into @p x on every rank. Collective. */
+    void
+    gather_own_points(const double *own, Vector &x) const;
+    /** Sends the gradient of kept_gradient() to the ranks that keep the
+     * points (built on the first call on several ranks). */
+    mutable std::unique_ptr<dealii::Utilities::MPI::NoncontiguousPartitioner>
+                         ghost_exchange;
+    mutable unsigned int ghost_exchange_ranks = 0;
     /** Per part, the forces its scatter adds up (only [lowest, highest]
      * used); this rank's points' gradient, where not in place. */
     mutable std::vector<std::vector<double>> part_forces;

@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/systems/free_flight.h>
 
 #include <memory>
@@ -137,6 +138,41 @@ namespace estep
      */
     virtual void
     hessian(const Vector &q, dealii::SparseMatrix<double> &H) const;
+    /** @} */
+
+    /**
+     * @name A state shared among MPI ranks
+     * In a run on several MPI ranks a system may let each rank keep only part
+     * of the state current: the coordinates that its own share of the work
+     * reads. An integrator that supports this (energy-stepping) updates only
+     * those between its steps, takes the gradient there (kept_gradient()),
+     * and completes a state (complete_state()) before anything else sees it.
+     * Any other integrator keeps every coordinate, as by default.
+     * @{
+     */
+
+    /**
+     * The coordinates this rank keeps current, as sorted disjoint ranges, or
+     * nullptr if it needs every coordinate (the default, and on one rank).
+     * The ranges hold this rank's blocks of coordinates (rank_blocks() of
+     * the n_blocks(n_dofs()) blocks, see distributed_blocks.h), where sums
+     * over coordinates are taken; energy() and free_flight() read only the
+     * kept coordinates of their arguments.
+     */
+    virtual const std::vector<BlockRange> *
+    kept_coordinates() const;
+
+    /** grad V(q) at the kept coordinates (the others of @p g left as they
+     * are), from q at the kept coordinates. Collective. The default:
+     * gradient(). */
+    virtual void
+    kept_gradient(const Vector &q, Vector &g) const;
+
+    /** Set every coordinate of @p x that this rank does not keep to its
+     * value on the rank that computes it. Collective. The default: nothing
+     * (every coordinate is kept). */
+    virtual void
+    complete_state(Vector &x) const;
     /** @} */
 
     /** Names of extra per-state quantities written to the history (e.g. a

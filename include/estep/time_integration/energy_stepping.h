@@ -73,6 +73,15 @@ namespace estep
     void
     step(const double t_limit) override;
 
+    /** On several MPI ranks that share the system's state, a step updates
+     * only the coordinates this rank keeps (kept_coordinates()); dense
+     * output and this fill in the others. */
+    void
+    complete_state() override;
+
+    double
+    current_kinetic_energy() const override;
+
     /** Exact: free-flight interpolation on the last flight. */
     Snapshot
     dense_output(const double t) const override;

@@ -75,6 +75,22 @@ namespace estep
     virtual Snapshot
     dense_state(const double t) const;
 
+    /**
+     * Make position() and velocity() hold every coordinate: an integrator
+     * that keeps only some current between its steps on several MPI ranks
+     * (MechanicalSystem::kept_coordinates()) fills in the others from the
+     * ranks that keep them. Collective; the time loop calls it before a
+     * checkpoint and at the end of the run. The default: nothing.
+     */
+    virtual void
+    complete_state();
+
+    /** The kinetic energy at time(), the same on every MPI rank (from the
+     * kept coordinates alone, where the integrator keeps only some). The
+     * default: kinetic_energy() of velocity(). */
+    virtual double
+    current_kinetic_energy() const;
+
     /** Work counters, in a fixed order. */
     virtual std::vector<Counter>
     counters() const = 0;
