@@ -286,6 +286,18 @@ namespace estep
 
 
 
+  std::vector<double>
+  values_of_every_rank(const double value)
+  {
+    std::vector<double> all(rank_count());
+    gather_from_all_ranks(&value,
+                          std::vector<unsigned int>(rank_count(), 1),
+                          all.data());
+    return all;
+  }
+
+
+
   int
   largest_over_ranks(const int value)
   {

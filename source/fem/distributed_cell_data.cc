@@ -301,11 +301,7 @@ namespace estep
     double mine = 0.;
     for (const P1CellData *data : bodies)
       mine += data->n_cells_in(data->held_chunks());
-    std::vector<double> all(rank_count());
-    gather_from_all_ranks(&mine,
-                          std::vector<unsigned int>(rank_count(), 1),
-                          all.data());
-    return all;
+    return values_of_every_rank(mine);
   }
 
 

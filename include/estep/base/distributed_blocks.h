@@ -144,6 +144,10 @@ namespace estep
     receive_bytes_from_first_rank(vector.data(), n * sizeof(T));
   }
 
+  /** Every rank's @p value, in rank order, on every rank. Collective. */
+  std::vector<double>
+  values_of_every_rank(const double value);
+
   /** The largest of the ranks' @p value. Collective. */
   int
   largest_over_ranks(const int value);
