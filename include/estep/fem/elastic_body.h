@@ -53,8 +53,9 @@ namespace estep
    * Its loops over cells run on the threads of thread_count() (see
    * parallel_blocks.h) and, in a run on several MPI ranks, on the ranks'
    * blocks of cells (see distributed_blocks.h; energy() and gradient() are
-   * then collective, and every rank holds the whole state but only the data
-   * of the cells it computes, see distributed_cell_data.h); they give the
+   * then collective, and every rank holds only the data of the cells it
+   * computes, see distributed_cell_data.h, and reads the state only at the
+   * points of those cells, see kept_coordinates()); they give the
    * same bits on any number of threads and ranks. Not thread-safe
    * itself: energy() and gradient() use internal scratch arrays.
    */
@@ -106,9 +107,10 @@ namespace estep
 
     /**
      * @name The state shared among MPI ranks
-     * On several ranks each keeps current the points of the cells it holds
-     * (its own and the chunks its points' gradient needs, see
-     * distributed_cell_data.h) and those of its blocks of coordinates. The
+     * On several ranks each keeps current the points of the cells it
+     * computes (those of its blocks and the chunks its points' gradient
+     * needs, see distributed_cell_data.h) and its blocks of coordinates, in
+     * ranges cut at the blocks' ends. The
      * gradient of the other ranks' points among them comes from the ranks
      * that compute it (deal.II's Utilities::MPI::NoncontiguousPartitioner),
      * instead of every point's from every rank. See MechanicalSystem.

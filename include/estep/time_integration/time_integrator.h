@@ -163,12 +163,15 @@ namespace estep
       return t_previous;
     }
 
+    /** The positions at time(); on several MPI ranks whose system shares
+     * its state, whole only after complete_state(). */
     const Vector &
     position() const
     {
       return q;
     }
 
+    /** The velocities at time(), as position(). */
     const Vector &
     velocity() const
     {
