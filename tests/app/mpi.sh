@@ -111,6 +111,12 @@ kept_as_expected cube-2x1
 cmp -s cube-1x1/history.csv cube-unsaved/history.csv ||
   fail "cube on 2 processes without checkpoints: history.csv differs from cube-1x1"
 same_final_energies cube-1x1 cube-unsaved "cube on 2 processes without checkpoints"
+# Checkpoints by wall time, every 30 ms: the first process's clock decides for both (each
+# checkpoint completes the state, which they do together), so the run neither hangs nor strays.
+"${mpi[@]}" "$ESTEP" "${cube[@]}" --threads 1 --set "Output/Checkpoint interval=0" \
+  --set "Output/Checkpoint wall interval=0.0005" --set "Output directory=cube-wall" \
+  > cube-wall.txt 2>&1 || fail "cube on 2 processes, checkpoints by wall time: $(tail -2 cube-wall.txt)"
+same_end cube-1x1 cube-wall "cube on 2 processes, checkpoints by wall time"
 
 # On 3 processes (of 1 thread, more than the cores): the middle one has ghost cells of the
 # processes on both sides, and, like the first, holds chunks of the next one's cells for its
