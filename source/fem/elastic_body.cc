@@ -313,7 +313,7 @@ namespace estep
   ElasticBody::kept_gradient(const Vector &q, Vector &g) const
   {
     const double *const  mine   = gradient_of_own_points(q, g);
-    const GradientParts &shared = gradient_parts;
+    const GradientParts &shared = current_gradient_parts();
     if (shared.ranks == 1)
       return;
     const std::size_t n_mine =
@@ -322,7 +322,7 @@ namespace estep
       for (std::size_t k = 0; k < n_mine / 3; ++k)
         for (unsigned int i = 0; i < 3; ++i)
           g[3 * shared.points[shared.first + k] + i] = mine[3 * k + i];
-    if (ghost_exchange_ranks != shared.ranks)
+    if (ghost_exchange == nullptr)
       {
         // This rank's points' coordinates, in the order of mine.
         std::vector<dealii::types::global_dof_index> owned(n_mine);
@@ -332,7 +332,6 @@ namespace estep
         ghost_exchange =
           std::make_unique<dealii::Utilities::MPI::NoncontiguousPartitioner>(
             owned, shared.ghosts, MPI_COMM_WORLD);
-        ghost_exchange_ranks = shared.ranks;
       }
     ghost_exchange->export_to_ghosted_array(
       dealii::ArrayView<const double>(mine, n_mine),

@@ -325,10 +325,10 @@ namespace estep
     void
     gather_own_points(const double *own, Vector &x) const;
     /** Sends the gradient of kept_gradient() to the ranks that keep the
-     * points (built on the first call on several ranks). */
+     * points (built on the first call on several ranks; the ranks are those
+     * of MPI_COMM_WORLD, whatever the number of threads). */
     mutable std::unique_ptr<dealii::Utilities::MPI::NoncontiguousPartitioner>
-                         ghost_exchange;
-    mutable unsigned int ghost_exchange_ranks = 0;
+      ghost_exchange;
     /** Per part, the forces its scatter adds up (only [lowest, highest]
      * used); this rank's points' gradient, where not in place. */
     mutable std::vector<std::vector<double>> part_forces;
