@@ -219,6 +219,10 @@ namespace estep
         window_length = end;
       double f_start = f_zero;
 
+      // Whether enclosures were made, and whether any bounded f'': if none
+      // did (no convexity rule could apply), that is the likely cause of a
+      // stall.
+      bool enclosed = false, curvature_bounded = false;
       while (window_start < end)
         {
           const double window_end = window_start + window_length;
@@ -238,7 +242,15 @@ namespace estep
                   " intervals without deciding, the last at flight parameter "
                   "s = " +
                   message_number(I.a) + ", " + message_number(I.b - I.a) +
-                  " wide" + step_below_round_off);
+                  " wide" +
+                  (enclosed && !curvature_bounded ?
+                     ". The flight's enclosures bound no curvature of V (a "
+                     "material without Material::"
+                     "volumetric_second_derivative_range(), for one), and "
+                     "without it the search cannot settle a turning point of "
+                     "V close to a level; give the material that range, or "
+                     "try a larger Energy step" :
+                     step_below_round_off));
               statistics.max_intervals_in_one_search =
                 std::max(statistics.max_intervals_in_one_search, n_examined);
               // The rules for the sitting level apply while f(a) is still
@@ -253,6 +265,11 @@ namespace estep
                 {
                   const LineEnclosure enclosure = flight.enclose(I.a, I.b);
                   ++statistics.n_enclosures;
+                  enclosed = true;
+                  curvature_bounded =
+                    curvature_bounded ||
+                    std::isfinite(enclosure.curvature.lower) ||
+                    std::isfinite(enclosure.curvature.upper);
                   const bool increasing = enclosure.derivative.lower > 0.;
                   const bool decreasing = enclosure.derivative.upper < 0.;
                   // The unique crossing in [a, b] of the level in @p direction,

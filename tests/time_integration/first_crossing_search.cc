@@ -247,13 +247,35 @@ namespace
   {
     // The search crawls from s = 0 one resolution at a time; after
     // max_intervals_examined intervals it stops with SearchStalled instead.
-    SearchStatistics statistics;
-    EXPECT_THROW(
-      find_first_crossing(UselessEnclosureFlight(0.),
-                          query(0., 1., Departure::from_lower_level, 1., 1.),
-                          statistics),
-      SearchStalled);
-    EXPECT_EQ(statistics.max_intervals_in_one_search, max_intervals_examined);
+    // Its message blames what it met: enclosures without any bound on f''
+    // (no convexity rule could apply), or else the energy step.
+    for (const bool curvature_known : {false, true})
+      {
+        SearchStatistics             statistics;
+        const UselessEnclosureFlight flight =
+          curvature_known ? UselessEnclosureFlight(0., {}, {-1., 1.}) :
+                            UselessEnclosureFlight(0.);
+        try
+          {
+            find_first_crossing(
+              flight,
+              query(0., 1., Departure::from_lower_level, 1., 1.),
+              statistics);
+            ADD_FAILURE() << "the search did not give up";
+          }
+        catch (const SearchStalled &stalled)
+          {
+            const std::string message = stalled.what();
+            EXPECT_EQ(message.find("bound no curvature") == std::string::npos,
+                      curvature_known)
+              << message;
+            EXPECT_NE(message.find("try a larger Energy step"),
+                      std::string::npos)
+              << message;
+          }
+        EXPECT_EQ(statistics.max_intervals_in_one_search,
+                  max_intervals_examined);
+      }
   }
 
   TEST(FirstCrossingSearch, EndsACrawlWhenTheRunIsInterrupted)

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -196,9 +197,12 @@ namespace estep::testing
   public:
     explicit UselessEnclosureFlight(
       const double                             c,
-      std::function<void(const std::uint64_t)> on_enclosure = {})
+      std::function<void(const std::uint64_t)> on_enclosure = {},
+      const Interval curvature = {-std::numeric_limits<double>::infinity(),
+                                  std::numeric_limits<double>::infinity()})
       : c(c)
       , on_enclosure(std::move(on_enclosure))
+      , curvature(curvature)
     {}
 
     double
@@ -218,7 +222,7 @@ namespace estep::testing
     {
       if (on_enclosure)
         on_enclosure(++n_enclosures);
-      return {{c - 1e-3, c + 1e-3}, {-1., 1.}};
+      return {{c - 1e-3, c + 1e-3}, {-1., 1.}, curvature};
     }
 
     double
@@ -230,6 +234,7 @@ namespace estep::testing
   private:
     const double                                   c;
     const std::function<void(const std::uint64_t)> on_enclosure;
+    const Interval                                 curvature;
     mutable std::uint64_t                          n_enclosures = 0;
   };
 } // namespace estep::testing
