@@ -316,25 +316,16 @@ namespace estep
     const GradientParts &shared = current_gradient_parts();
     if (shared.ranks == 1)
       return;
-    const std::size_t n_mine =
-      3 * std::size_t(shared.points_per_rank[this_rank()]);
+    const std::vector<dealii::types::global_dof_index> &owned = shared.owned;
     if (!shared.in_order)
-      for (std::size_t k = 0; k < n_mine / 3; ++k)
-        for (unsigned int i = 0; i < 3; ++i)
-          g[3 * shared.points[shared.first + k] + i] = mine[3 * k + i];
+      for (std::size_t j = 0; j < owned.size(); ++j)
+        g[owned[j]] = mine[j];
     if (ghost_exchange == nullptr)
-      {
-        // This rank's points' coordinates, in the order of mine.
-        std::vector<dealii::types::global_dof_index> owned(n_mine);
-        for (std::size_t k = 0; k < n_mine / 3; ++k)
-          for (unsigned int i = 0; i < 3; ++i)
-            owned[3 * k + i] = 3 * shared.points[shared.first + k] + i;
-        ghost_exchange =
-          std::make_unique<dealii::Utilities::MPI::NoncontiguousPartitioner>(
-            owned, shared.ghosts, MPI_COMM_WORLD);
-      }
+      ghost_exchange =
+        std::make_unique<dealii::Utilities::MPI::NoncontiguousPartitioner>(
+          owned, shared.ghosts, MPI_COMM_WORLD);
     ghost_exchange->export_to_ghosted_array(
-      dealii::ArrayView<const double>(mine, n_mine),
+      dealii::ArrayView<const double>(mine, owned.size()),
       dealii::ArrayView<double>(g.data(), g.size()));
   }
 
@@ -344,11 +335,14 @@ namespace estep
     const GradientParts &shared = current_gradient_parts();
     if (shared.ranks == 1)
       return;
-    const unsigned int n_mine = shared.points_per_rank[this_rank()];
-    scratch_mine.resize(3 * std::size_t(n_mine));
-    for (unsigned int k = 0; k < n_mine; ++k)
-      for (unsigned int i = 0; i < 3; ++i)
-        scratch_mine[3 * k + i] = x[3 * shared.points[shared.first + k] + i];
+    if (shared.in_order)
+      {
+        gather_own_points(x.data() + 3 * std::size_t(shared.first), x);
+        return;
+      }
+    scratch_mine.resize(shared.owned.size());
+    for (std::size_t j = 0; j < shared.owned.size(); ++j)
+      scratch_mine[j] = x[shared.owned[j]];
     gather_own_points(scratch_mine.data(), x);
   }
 
@@ -464,6 +458,10 @@ namespace estep
                     keep.begin() +
                       block_range(coordinate_blocks.end - 1, n_coordinates).end,
                     1);
+        owned.reserve(3 * std::size_t(points_per_rank[me]));
+        for (unsigned int k = first; k < first + points_per_rank[me]; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            owned.push_back(3 * points[k] + i);
         ghosts.assign(n_coordinates, dealii::numbers::invalid_dof_index);
         for (unsigned int i = 0; i < n_coordinates; ++i)
           if (keep[i])

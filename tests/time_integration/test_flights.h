@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <utility>
 #include <vector>
 
@@ -198,8 +197,7 @@ namespace estep::testing
     explicit UselessEnclosureFlight(
       const double                             c,
       std::function<void(const std::uint64_t)> on_enclosure = {},
-      const Interval curvature = {-std::numeric_limits<double>::infinity(),
-                                  std::numeric_limits<double>::infinity()})
+      const Interval curvature = LineEnclosure().curvature)
       : c(c)
       , on_enclosure(std::move(on_enclosure))
       , curvature(curvature)

@@ -307,7 +307,10 @@ namespace estep
       /** On several ranks, the coordinates this rank keeps current (see
        * kept_coordinates()). */
       std::vector<BlockRange> kept;
-      /** And of these, the coordinates of other ranks' points: each is
+      /** The coordinates of this rank's points, in the order of its
+       * points' gradient (as gradient_of_own_points() lists them). */
+      std::vector<dealii::types::global_dof_index> owned;
+      /** Of the kept coordinates, those of other ranks' points: each is
        * its own index, every other coordinate numbers::invalid_dof_index
        * (the ghosts of ghost_exchange, in place in a state vector). */
       std::vector<dealii::types::global_dof_index> ghosts;

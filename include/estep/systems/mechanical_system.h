@@ -156,8 +156,8 @@ namespace estep
      * nullptr if it needs every coordinate (the default, and on one rank).
      * The ranges hold this rank's blocks of coordinates (rank_blocks() of
      * the n_blocks(n_dofs()) blocks, see distributed_blocks.h), where sums
-     * over coordinates are taken; energy() and free_flight() read only the
-     * kept coordinates of their arguments.
+     * over coordinates are taken; energy(), free_flight() and penetration()
+     * read only the kept coordinates of their arguments.
      */
     virtual const std::vector<BlockRange> *
     kept_coordinates() const;
