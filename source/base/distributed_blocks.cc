@@ -149,6 +149,29 @@ namespace estep
 
 
 
+  std::vector<BlockRange>
+  kept_coordinate_ranges(std::vector<char> read)
+  {
+    const unsigned int n      = read.size();
+    const BlockRange   blocks = rank_blocks(n_blocks(n), this_rank());
+    if (blocks.begin < blocks.end)
+      std::fill(read.begin() + block_range(blocks.begin, n).begin,
+                read.begin() + block_range(blocks.end - 1, n).end,
+                1);
+    std::vector<BlockRange> kept;
+    for (unsigned int i = 0; i < n; ++i)
+      if (read[i])
+        {
+          if (!kept.empty() && kept.back().end == i && i % block_size != 0)
+            ++kept.back().end;
+          else
+            kept.push_back({i, i + 1});
+        }
+    return kept;
+  }
+
+
+
   std::vector<unsigned int>
   cell_ranks(const unsigned int n_cells, const unsigned int n_ranks)
   {

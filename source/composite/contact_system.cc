@@ -1,4 +1,5 @@
 #include <estep/base/distributed_blocks.h>
+#include <estep/base/ghost_exchange.h>
 #include <estep/base/parallel_blocks.h>
 #include <estep/composite/contact_system.h>
 #include <estep/contact/first_contact.h>
@@ -498,6 +499,116 @@ namespace estep
     });
     if (penalty)
       penalty->add_gradient(q.data(), q.size(), g.data());
+  }
+
+
+
+  struct ContactSystem::SharedState
+  {
+    unsigned int                                 ranks = 0;
+    std::vector<BlockRange>                      kept;
+    std::vector<dealii::types::global_dof_index> owned;
+    std::vector<std::size_t>                     body_start;
+    std::unique_ptr<GhostExchange>               exchange;
+    std::vector<double>                          own_gradient;
+  };
+
+
+
+  ContactSystem::SharedState &
+  ContactSystem::current_shared_state() const
+  {
+    if (shared_state && shared_state->ranks == rank_count())
+      return *shared_state;
+    shared_state         = std::make_unique<SharedState>();
+    SharedState &shared  = *shared_state;
+    shared.ranks         = rank_count();
+    const unsigned int n = n_dofs();
+    std::vector<char>  read(n, 0);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const std::size_t        first     = 3 * std::size_t(offsets[b]);
+        const std::vector<char> &body_read = bodies[b]->coordinates_read();
+        std::copy(body_read.begin(), body_read.end(), read.begin() + first);
+        shared.body_start.push_back(shared.owned.size());
+        for (const auto i : bodies[b]->own_coordinates())
+          shared.owned.push_back(first + i);
+        for (const unsigned int p : boundary_points[b])
+          std::fill_n(read.begin() + 3 * p, 3, 1);
+      }
+    shared.body_start.push_back(shared.owned.size());
+    // The surfaces' points: no body's, their gradient the contact's alone,
+    // which every rank computes.
+    std::fill(read.begin() + 3 * n_body_points(), read.end(), 1);
+    shared.kept = kept_coordinate_ranges(std::move(read));
+    shared.own_gradient.resize(shared.owned.size());
+    return shared;
+  }
+
+
+
+  const std::vector<BlockRange> *
+  ContactSystem::kept_coordinates() const
+  {
+    return rank_count() > 1 ? &current_shared_state().kept : nullptr;
+  }
+
+
+
+  void
+  ContactSystem::kept_gradient(const Vector &q, Vector &g) const
+  {
+    if (rank_count() == 1)
+      {
+        gradient(q, g);
+        return;
+      }
+    SharedState &shared = current_shared_state();
+    if (g.size() != q.size())
+      g.reinit(q.size());
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        scratch_q[b] = extract(q, b);
+        const double *mine =
+          bodies[b]->gradient_of_own_points(scratch_q[b], scratch_g[b]);
+        std::copy(mine,
+                  mine + (shared.body_start[b + 1] - shared.body_start[b]),
+                  shared.own_gradient.begin() + shared.body_start[b]);
+      }
+    for (std::size_t j = 0; j < shared.owned.size(); ++j)
+      g[shared.owned[j]] = shared.own_gradient[j];
+    std::fill(g.begin() + 3 * n_body_points(), g.end(), 0.);
+    if (shared.exchange == nullptr)
+      {
+        std::vector<dealii::types::global_dof_index> ghosts(
+          q.size(), dealii::numbers::invalid_dof_index);
+        std::vector<char> computed(q.size(), 0);
+        for (const auto i : shared.owned)
+          computed[i] = 1;
+        for (const BlockRange range : shared.kept)
+          for (unsigned int i = range.begin; i < range.end; ++i)
+            if (!computed[i] && i < 3 * n_body_points())
+              ghosts[i] = i;
+        shared.exchange = std::make_unique<GhostExchange>(shared.owned, ghosts);
+      }
+    shared.exchange->send(shared.own_gradient.data(), g.data());
+    if (penalty)
+      penalty->add_gradient(q.data(), q.size(), g.data());
+  }
+
+
+
+  void
+  ContactSystem::complete_state(Vector &x) const
+  {
+    if (rank_count() == 1)
+      return;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        Vector part = extract(x, b);
+        bodies[b]->complete_state(part);
+        std::copy(part.begin(), part.end(), x.begin() + 3 * offsets[b]);
+      }
   }
 
 

@@ -113,8 +113,27 @@ namespace estep
     {
       for (const auto &t : triangles)
         for (const unsigned int i : t)
-          max_index = std::max(max_index, i);
+          {
+            max_index = std::max(max_index, i);
+            triangle_vertices.push_back(i);
+          }
+      std::sort(triangle_vertices.begin(), triangle_vertices.end());
+      triangle_vertices.erase(std::unique(triangle_vertices.begin(),
+                                          triangle_vertices.end()),
+                              triangle_vertices.end());
       set_exclusion_groups(std::move(exclusion_groups));
+    }
+
+
+
+    double
+    BoundingVolumeHierarchy::largest_vertex_coordinate(const double *x) const
+    {
+      double largest = 0.;
+      for (const unsigned int i : triangle_vertices)
+        for (unsigned int d = 0; d < 3; ++d)
+          largest = std::max(largest, std::abs(x[3 * i + d]));
+      return largest;
     }
 
 

@@ -157,13 +157,8 @@ namespace estep
                         double                  &max_q)
       {
         const auto &triangles = tree.get_triangles();
-        max_q                 = 0.;
-        double max_v          = 0.;
-        for (std::size_t i = 0; i < n; ++i)
-          {
-            max_q = std::max(max_q, std::abs(q[i]));
-            max_v = std::max(max_v, std::abs(v[i]));
-          }
+        max_q                 = tree.largest_vertex_coordinate(q);
+        const double max_v    = tree.largest_vertex_coordinate(v);
         // Boxes enlarged by the margin: pairs that come within it are
         // examined. The tree's topology may be an earlier flight's: it
         // changes the order of the pairs, which the queries are sorted out

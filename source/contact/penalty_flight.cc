@@ -609,16 +609,12 @@ namespace estep
       : contact(contact)
       , q(q, q + n)
       , v(v, v + n)
+      , max_q(contact.hierarchy().largest_vertex_coordinate(q))
+      , max_v(contact.hierarchy().largest_vertex_coordinate(v))
       , bvh(contact.hierarchy())
       , swept_boxes(contact.get_triangles().size())
       , box_query(contact.get_triangles().size(), 0)
-    {
-      for (std::size_t i = 0; i < n; ++i)
-        {
-          max_q = std::max(max_q, std::abs(q[i]));
-          max_v = std::max(max_v, std::abs(v[i]));
-        }
-    }
+    {}
 
 
 
@@ -638,8 +634,9 @@ namespace estep
           const double      end = a + 4. * (b - a);
           const std::size_t n   = q.size();
           scratch.resize(n);
-          for (std::size_t i = 0; i < n; ++i)
-            scratch[i] = q[i] + a * v[i];
+          for (const unsigned int i : bvh.vertices())
+            for (unsigned int d = 0; d < 3; ++d)
+              scratch[3 * i + d] = q[3 * i + d] + a * v[3 * i + d];
           bvh.refit_swept(scratch.data(),
                           v.data(),
                           n,

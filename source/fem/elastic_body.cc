@@ -1,7 +1,7 @@
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi_noncontiguous_partitioner.templates.h>
 
 #include <estep/base/distributed_blocks.h>
+#include <estep/base/ghost_exchange.h>
 #include <estep/fem/distributed_cell_data.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/fem/elastic_free_flight.h>
@@ -309,6 +309,18 @@ namespace estep
     return rank_count() > 1 ? &current_gradient_parts().kept : nullptr;
   }
 
+  const std::vector<char> &
+  ElasticBody::coordinates_read() const
+  {
+    return current_gradient_parts().read;
+  }
+
+  const std::vector<dealii::types::global_dof_index> &
+  ElasticBody::own_coordinates() const
+  {
+    return current_gradient_parts().owned;
+  }
+
   void
   ElasticBody::kept_gradient(const Vector &q, Vector &g) const
   {
@@ -321,12 +333,8 @@ namespace estep
       for (std::size_t j = 0; j < owned.size(); ++j)
         g[owned[j]] = mine[j];
     if (ghost_exchange == nullptr)
-      ghost_exchange =
-        std::make_unique<dealii::Utilities::MPI::NoncontiguousPartitioner>(
-          owned, shared.ghosts, MPI_COMM_WORLD);
-    ghost_exchange->export_to_ghosted_array(
-      dealii::ArrayView<const double>(mine, owned.size()),
-      dealii::ArrayView<double>(g.data(), g.size()));
+      ghost_exchange = std::make_unique<GhostExchange>(owned, shared.ghosts);
+    ghost_exchange->send(mine, g.data());
   }
 
   void
@@ -433,16 +441,15 @@ namespace estep
       {
         // The coordinates this rank keeps: the points of the cells it
         // computes (those of its blocks, and those its points' gradient
-        // needs: its own points among them), and its blocks of coordinates;
-        // in ranges cut at the blocks' ends, which the threads share.
+        // needs: its own points among them), and its blocks of coordinates.
         const unsigned int n_coordinates = 3 * data.n_points;
-        std::vector<char>  keep(n_coordinates, 0);
-        const auto         keep_points = [&](const BlockRange cells) {
+        read.assign(n_coordinates, 0);
+        const auto keep_points = [&](const BlockRange cells) {
           for (unsigned int e = cells.begin;
                e < std::min(cells.end, data.n_cells);
                ++e)
             for (unsigned int a = 0; a < 4; ++a)
-              std::fill_n(keep.begin() + 3 * data.point[a][data.at(e)], 3, 1);
+              std::fill_n(read.begin() + 3 * data.point[a][data.at(e)], 3, 1);
         };
         if (mine.begin < mine.end)
           keep_points({block_range(mine.begin, n_padded).begin,
@@ -450,29 +457,16 @@ namespace estep
         for (const Part &part : parts)
           for (const BlockRange &cells : part.cells)
             keep_points(cells);
-        const BlockRange coordinate_blocks =
-          rank_blocks(n_blocks(n_coordinates), me);
-        if (coordinate_blocks.begin < coordinate_blocks.end)
-          std::fill(keep.begin() +
-                      block_range(coordinate_blocks.begin, n_coordinates).begin,
-                    keep.begin() +
-                      block_range(coordinate_blocks.end - 1, n_coordinates).end,
-                    1);
+        kept = kept_coordinate_ranges(read);
         owned.reserve(3 * std::size_t(points_per_rank[me]));
         for (unsigned int k = first; k < first + points_per_rank[me]; ++k)
           for (unsigned int i = 0; i < 3; ++i)
             owned.push_back(3 * points[k] + i);
         ghosts.assign(n_coordinates, dealii::numbers::invalid_dof_index);
-        for (unsigned int i = 0; i < n_coordinates; ++i)
-          if (keep[i])
-            {
-              if (point_rank[i / 3] != me)
-                ghosts[i] = i;
-              if (!kept.empty() && kept.back().end == i && i % block_size != 0)
-                ++kept.back().end;
-              else
-                kept.push_back({i, i + 1});
-            }
+        for (const BlockRange range : kept)
+          for (unsigned int i = range.begin; i < range.end; ++i)
+            if (point_rank[i / 3] != me)
+              ghosts[i] = i;
       }
     // A part whose blocks bring no point of their own (the cells of a short
     // last block may all have their points in earlier cells) has nothing to

@@ -170,17 +170,8 @@ namespace estep
         .add("material", material.material->name())
         .add("density", material.density);
       if (rank_count() > 1)
-        {
-          // And the coordinates of the state each keeps current.
-          double kept = 0.;
-          for (const BlockRange range : *body->kept_coordinates())
-            kept += range.end - range.begin;
-          problem.description
-            .add("cells held by each process",
-                 cells_held_on_each_rank({&body->cell_data()}))
-            .add("coordinates kept by each process",
-                 values_of_every_rank(kept));
-        }
+        problem.description.add("cells held by each process",
+                                cells_held_on_each_rank({&body->cell_data()}));
       problem.system = std::move(body);
       // Entries that the chosen mesh type and velocity type do not read.
       const std::vector<std::string> unread = entries_unread_by_type(

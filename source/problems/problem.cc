@@ -1,5 +1,6 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/fem/elastic_body.h>
 #include <estep/materials/material_registry.h>
 #include <estep/problems/problem.h>
@@ -106,6 +107,18 @@ namespace estep
         "; a setting there would be ignored.");
     Problem problem = chosen.create(prm);
     problem.name    = name;
+    // On several MPI ranks, the coordinates of the state each keeps current
+    // where the system shares it (MechanicalSystem::kept_coordinates()).
+    if (rank_count() > 1)
+      if (const std::vector<BlockRange> *kept =
+            problem.system->kept_coordinates())
+        {
+          double count = 0.;
+          for (const BlockRange range : *kept)
+            count += range.end - range.begin;
+          problem.description.add("coordinates kept by each process",
+                                  values_of_every_rank(count));
+        }
     return problem;
   }
 } // namespace estep

@@ -67,6 +67,17 @@ namespace estep
              const unsigned int n_ranks = rank_count());
 
   /**
+   * The coordinates a rank keeps current in a state shared among the ranks
+   * (MechanicalSystem::kept_coordinates()): those flagged in @p read (one
+   * flag per coordinate) and this rank's blocks of coordinates
+   * (rank_blocks() of their n_blocks()), where the sums over coordinates are
+   * taken; as sorted disjoint ranges cut at the ends of blocks, which the
+   * threads share.
+   */
+  std::vector<BlockRange>
+  kept_coordinate_ranges(std::vector<char> read);
+
+  /**
    * @p items holds @p n_blocks items of @p item_bytes bytes each, of which
    * this rank has written those of rank_blocks(n_blocks, this_rank()); on
    * return every rank holds every item, each from the rank that computed it.

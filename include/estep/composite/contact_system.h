@@ -108,6 +108,27 @@ namespace estep
     gradient(const Vector &q, Vector &g) const override;
 
     /**
+     * @name The state shared among MPI ranks
+     * On several ranks each keeps current the coordinates its bodies' cells
+     * read (ElasticBody::coordinates_read()), every point of a boundary
+     * triangle (the contact terms, the collision detection and the checks of
+     * penetration read them on every rank alike) and its blocks of
+     * coordinates. The bodies' gradient at a kept point that another rank
+     * computes comes from that rank (GhostExchange); then every rank adds
+     * the contact's part, at the boundary points. See MechanicalSystem.
+     * @{
+     */
+    const std::vector<BlockRange> *
+    kept_coordinates() const override;
+
+    void
+    kept_gradient(const Vector &q, Vector &g) const override;
+
+    void
+    complete_state(Vector &x) const override;
+    /** @} */
+
+    /**
      * Sum of the bodies' ElasticFreeFlight and, in penalty mode, the
      * PenaltyFlight. Enclosures: one second-order form of the sum about the
      * interval's centre (values and slopes of the parts added at the centre,
@@ -350,6 +371,16 @@ namespace estep
     std::vector<std::vector<unsigned int>> boundary_points, body_triangles;
     std::vector<double>                    longest_boundary_edge;
     mutable std::vector<Vector>            scratch_q, scratch_g;
+
+    /** What kept_gradient() needs on several ranks (see there): the kept
+     * coordinates, the coordinates of the bodies' own points (body after
+     * body, each in the order of ElasticBody::gradient_of_own_points())
+     * with where each body's start, and their exchange. */
+    struct SharedState;
+    mutable std::unique_ptr<SharedState> shared_state;
+    /** The shared state for the current number of ranks. */
+    SharedState &
+    current_shared_state() const;
 
     /** The box of each body's boundary points at @p x. */
     std::vector<contact::BoundingBox>

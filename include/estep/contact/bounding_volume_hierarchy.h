@@ -234,6 +234,19 @@ namespace estep
         return triangles;
       }
 
+      /** The points the triangles use, in increasing order. */
+      const std::vector<unsigned int> &
+      vertices() const
+      {
+        return triangle_vertices;
+      }
+
+      /** The largest |x_i| over the coordinates of vertices() in the
+       * point-major @p x (0 without triangles): the scale of the round-off
+       * of positions and velocities that reach the triangles. */
+      double
+      largest_vertex_coordinate(const double *x) const;
+
       /** The exclusion groups as last set (empty: none). */
       const std::vector<unsigned int> &
       get_exclusion_groups() const
@@ -298,6 +311,7 @@ namespace estep
       refit_tree();
 
       std::vector<TriangleIndices> triangles;
+      std::vector<unsigned int>    triangle_vertices;
       unsigned int                 max_index;
       std::vector<BoundingBox>     boxes;
       std::vector<unsigned int>    order;

@@ -138,8 +138,8 @@ namespace estep
 
       const PenaltyContact           &contact;
       std::vector<double>             q, v;
-      double                          max_q = 0.;
-      double                          max_v = 0.;
+      double                          max_q;
+      double                          max_v;
       mutable BoundingVolumeHierarchy bvh;
       mutable bool                    cached  = false;
       mutable double                  cache_a = 0.;

@@ -19,15 +19,12 @@ namespace dealii
 {
   template <int dim, int spacedim>
   class Triangulation;
-  namespace Utilities::MPI
-  {
-    class NoncontiguousPartitioner;
-  } // namespace Utilities::MPI
 } // namespace dealii
 
 namespace estep
 {
   class ElasticFreeFlight;
+  class GhostExchange;
 
   /**
    * A hyperelastic body discretised by linear tetrahedra (P1), as a
@@ -124,6 +121,26 @@ namespace estep
 
     void
     complete_state(Vector &x) const override;
+
+    /** For a system made of bodies that shares its state among the ranks
+     * (ContactSystem): on several ranks, a flag per coordinate, set for those
+     * the cells this rank computes read (kept_coordinates() adds this rank's
+     * blocks of coordinates); empty on one rank. */
+    const std::vector<char> &
+    coordinates_read() const;
+
+    /** On several ranks, the coordinates of this rank's own points, whose
+     * gradient it computes, in the order of gradient_of_own_points(). */
+    const std::vector<dealii::types::global_dof_index> &
+    own_coordinates() const;
+
+    /** The gradient of this rank's points at @p q, read at the kept
+     * coordinates: into @p g (resized to n_dofs()) where they are in place
+     * (own_coordinates() is a range), else into a scratch array; returns
+     * where they are, in the order of own_coordinates(), valid until the
+     * next call. Not collective. */
+    const double *
+    gradient_of_own_points(const Vector &q, Vector &g) const;
     /** @} */
 
     /** An ElasticFreeFlight (see there) of this body along q + s v. */
@@ -304,8 +321,10 @@ namespace estep
         unsigned int lowest = 0, highest = 0;
       };
       std::vector<Part> parts;
-      /** On several ranks, the coordinates this rank keeps current (see
+      /** On several ranks, the coordinates this rank's cells read (see
+       * coordinates_read()) and those it keeps current (see
        * kept_coordinates()). */
+      std::vector<char>       read;
       std::vector<BlockRange> kept;
       /** The coordinates of this rank's points, in the order of its
        * points' gradient (as gradient_of_own_points() lists them). */
@@ -319,10 +338,6 @@ namespace estep
     /** The gradient parts for the current numbers of threads and ranks. */
     const GradientParts &
     current_gradient_parts() const;
-    /** This rank's points' gradient at @p q, into @p g where they are in
-     * place, else into scratch_mine; returns where they are. */
-    const double *
-    gradient_of_own_points(const Vector &q, Vector &g) const;
     /** Every rank's points' values, each rank's @p own (3 per point, in
      * the order of its points), into @p x on every rank. Collective. */
     void
@@ -330,8 +345,7 @@ namespace estep
     /** Sends the gradient of kept_gradient() to the ranks that keep the
      * points (built on the first call on several ranks; the ranks are those
      * of MPI_COMM_WORLD, whatever the number of threads). */
-    mutable std::unique_ptr<dealii::Utilities::MPI::NoncontiguousPartitioner>
-      ghost_exchange;
+    mutable std::unique_ptr<GhostExchange> ghost_exchange;
     /** Per part, the forces its scatter adds up (only [lowest, highest]
      * used); this rank's points' gradient, where not in place. */
     mutable std::vector<std::vector<double>> part_forces;
