@@ -98,6 +98,24 @@ namespace estep
 
 
 
+  const std::vector<BlockRange> *
+  Scene::kept_coordinates() const
+  {
+    return base().kept_coordinates();
+  }
+
+  void
+  Scene::kept_gradient(const Vector &q, Vector &g) const
+  {
+    base().kept_gradient(q, g);
+  }
+
+  void
+  Scene::complete_state(Vector &x) const
+  {
+    base().complete_state(x);
+  }
+
   void
   Scene::obstacle_surface(std::vector<double>       &points,
                           std::vector<unsigned int> &triangles) const

@@ -193,6 +193,12 @@ same_on_ranks penalty "${balls[@]}"
 same_on_ranks impenetrable "${balls[@]}" --set "Contact/Mode=impenetrability"
 # Small balls: most of their points lie on or next to the boundary, which every process keeps.
 kept_as_expected penalty-2x1 1
+# A scene of bodies in contact alone (no gravity, supports or obstacles) shares its state as its
+# contact system does: Newton's cradle, through its first impacts.
+same_on_ranks cradle "$files/scene_newtons_cradle.prm" --set "Time integration/End time=0.2" \
+  --set "Postprocessors/List=history, contact monitor"
+grep -q '"coordinates kept by each process"' cradle-2x1/summary.json ||
+  fail "cradle-2x1: summary.json records no coordinates kept by each process"
 
 # SIGTERM to the launcher after the first checkpoint: it passes the signal to both processes,
 # which end after the same step (status interrupted, a final checkpoint; each exits with 143,
