@@ -3,6 +3,7 @@
 // fused multiply-add by the compiler (the one fma below is explicit).
 #pragma GCC optimize("fp-contract=off")
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/composite/gravity.h>
 #include <estep/systems/line_taylor_form.h>
 
@@ -17,6 +18,56 @@ namespace estep
   {
     constexpr double epsilon = std::numeric_limits<double>::epsilon();
     constexpr double unit    = epsilon / 2.;
+
+    /** Dot2 of a block of coordinates: its running sum, the errors of the
+     * products and of the running sum, and sum_i |x_i y_i|. Blocks are
+     * joined in order as Dot2 adds a product: the running sums by two-sum,
+     * the errors plainly. */
+    struct CompensatedDot
+    {
+      double sum = 0., error = 0., gross = 0.;
+
+      /** Dot2 of @p x and @p y over @p range. */
+      static CompensatedDot
+      of(const Vector &x, const Vector &y, const BlockRange range)
+      {
+        CompensatedDot dot;
+        for (unsigned int i = range.begin; i < range.end; ++i)
+          {
+            const double product = x[i] * y[i];
+            dot.error += std::fma(x[i], y[i], -product);
+            dot.add_to_sum(product);
+            dot.gross += std::abs(product);
+          }
+        return dot;
+      }
+
+      CompensatedDot &
+      operator+=(const CompensatedDot &other)
+      {
+        error += other.error;
+        add_to_sum(other.sum);
+        gross += other.gross;
+        return *this;
+      }
+
+      double
+      value() const
+      {
+        return sum + error;
+      }
+
+    private:
+      /** Knuth's two-sum: sum + x exactly, as the new sum and its error. */
+      void
+      add_to_sum(const double x)
+      {
+        const double t = sum + x;
+        const double z = t - sum;
+        error += (sum - (t - z)) + (x - z);
+        sum = t;
+      }
+    };
 
     /** The common part of two enclosures of the same quantity (their hull
      * if they do not overlap, which valid enclosures always do). */
@@ -61,17 +112,17 @@ namespace estep
     class GravityFlight : public FreeFlight
     {
     public:
+      /** @p c0 = -w . q, @p c1 = -w . v, and @p magnitude_q =
+       * sum_i |w_i q_i|. */
       GravityFlight(std::unique_ptr<FreeFlight> base_flight,
-                    const Vector               &weights,
-                    const Vector               &q,
-                    const Vector               &v)
+                    const double                c0,
+                    const double                c1,
+                    const double                magnitude_q)
         : base(std::move(base_flight))
-      {
-        double magnitude_q = 0.;
-        c0                 = -compensated_dot(weights, q, &magnitude_q);
-        c1                 = -compensated_dot(weights, v);
-        linear_tolerance   = 8. * epsilon * magnitude_q;
-      }
+        , c0(c0)
+        , c1(c1)
+        , linear_tolerance(8. * epsilon * magnitude_q)
+      {}
 
       double
       value(const double s) const override
@@ -162,8 +213,8 @@ namespace estep
       }
 
       std::unique_ptr<FreeFlight> base;
-      double                      c0 = 0., c1 = 0.;
-      double                      linear_tolerance = 0.;
+      double                      c0, c1;
+      double                      linear_tolerance;
     };
   } // namespace
 
@@ -175,24 +226,14 @@ namespace estep
     if (x.size() != y.size())
       throw std::invalid_argument(
         "compensated_dot: the vectors differ in size.");
-    // Dot2: the products split exactly by a fused multiply-add, the running
-    // sum by Knuth's two-sum; the errors are summed plainly and added at the
-    // end.
-    double sum = 0., error = 0., gross = 0.;
-    for (unsigned int i = 0; i < x.size(); ++i)
-      {
-        const double product       = x[i] * y[i];
-        const double product_error = std::fma(x[i], y[i], -product);
-        const double t             = sum + product;
-        const double z             = t - sum;
-        const double sum_error     = (sum - (t - z)) + (product - z);
-        sum                        = t;
-        error += product_error + sum_error;
-        gross += std::abs(product);
-      }
+    const unsigned int   n = x.size();
+    const CompensatedDot dot =
+      sum_over_blocks<CompensatedDot>(n_blocks(n), [&](const unsigned int b) {
+        return CompensatedDot::of(x, y, block_range(b, n));
+      });
     if (magnitude != nullptr)
-      *magnitude = gross;
-    return sum + error;
+      *magnitude = dot.gross;
+    return dot.value();
   }
 
 
@@ -274,12 +315,28 @@ namespace estep
 
 
   double
+  Gravity::weighted_sum(const Vector &x, double *magnitude) const
+  {
+    const unsigned int   n   = x.size();
+    const CompensatedDot dot = sum_over_coordinate_blocks<CompensatedDot>(
+      *this, [&](const unsigned int b) {
+        return CompensatedDot::of(w, x, block_range(b, n));
+      });
+    if (magnitude != nullptr)
+      *magnitude = dot.gross;
+    return dot.value();
+  }
+
+
+
+  double
   Gravity::energy(const Vector &q) const
   {
     const double V = base_system->energy(q);
+    const double W = weighted_sum(q);
     if (!std::isfinite(V))
       return V;
-    return V + gravitational_potential(q);
+    return V - W;
   }
 
 
@@ -293,13 +350,44 @@ namespace estep
 
 
 
+  const std::vector<BlockRange> *
+  Gravity::kept_coordinates() const
+  {
+    return base_system->kept_coordinates();
+  }
+
+
+
+  void
+  Gravity::kept_gradient(const Vector &q, Vector &grad) const
+  {
+    base_system->kept_gradient(q, grad);
+    for_each_kept_range(*this, [&](const BlockRange range) {
+      for (unsigned int i = range.begin; i < range.end; ++i)
+        grad[i] -= w[i];
+    });
+  }
+
+
+
+  void
+  Gravity::complete_state(Vector &x) const
+  {
+    base_system->complete_state(x);
+  }
+
+
+
   std::unique_ptr<FreeFlight>
   Gravity::free_flight(const Vector &q, const Vector &v) const
   {
+    double       magnitude_q = 0.;
+    const double c0          = -weighted_sum(q, &magnitude_q);
+    const double c1          = -weighted_sum(v);
     return std::make_unique<GravityFlight>(base_system->free_flight(q, v),
-                                           w,
-                                           q,
-                                           v);
+                                           c0,
+                                           c1,
+                                           magnitude_q);
   }
 
 

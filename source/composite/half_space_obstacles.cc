@@ -6,6 +6,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/composite/contact_system.h>
 #include <estep/composite/half_space_obstacles.h>
 #include <estep/systems/line_taylor_form.h>
@@ -457,6 +458,30 @@ namespace estep
         !(penalty_parameter > 0. && std::isfinite(penalty_parameter)))
       throw std::invalid_argument(
         "HalfSpaceObstacles: the penalty parameter must be positive");
+    // The obstacles read the contact points alone: the state can be shared
+    // as the base shares it if every rank keeps all of them.
+    if (rank_count() > 1)
+      {
+        bool every = false;
+        if (const std::vector<BlockRange> *kept =
+              base_system->kept_coordinates())
+          {
+            std::vector<char> is_kept(base_system->n_dofs(), 0);
+            for (const BlockRange range : *kept)
+              std::fill(is_kept.begin() + range.begin,
+                        is_kept.begin() + range.end,
+                        1);
+            every =
+              std::all_of(contact_points.begin(),
+                          contact_points.end(),
+                          [&](const unsigned int p) {
+                            return std::count(is_kept.begin() + dim * p,
+                                              is_kept.begin() + dim * (p + 1),
+                                              1) == std::ptrdiff_t(dim);
+                          });
+          }
+        shares_state = largest_over_ranks(every ? 0 : 1) == 0;
+      }
   }
 
 
@@ -480,6 +505,45 @@ namespace estep
   HalfSpaceObstacles::gradient(const Vector &q, Vector &g) const
   {
     base_system->gradient(q, g);
+    add_obstacle_gradient(q, g);
+  }
+
+
+
+  const std::vector<BlockRange> *
+  HalfSpaceObstacles::kept_coordinates() const
+  {
+    return shares_state ? base_system->kept_coordinates() : nullptr;
+  }
+
+
+
+  void
+  HalfSpaceObstacles::kept_gradient(const Vector &q, Vector &g) const
+  {
+    if (!shares_state)
+      {
+        gradient(q, g);
+        return;
+      }
+    base_system->kept_gradient(q, g);
+    add_obstacle_gradient(q, g);
+  }
+
+
+
+  void
+  HalfSpaceObstacles::complete_state(Vector &x) const
+  {
+    if (shares_state)
+      base_system->complete_state(x);
+  }
+
+
+
+  void
+  HalfSpaceObstacles::add_obstacle_gradient(const Vector &q, Vector &g) const
+  {
     if (obstacle_mode != Mode::penalty)
       return;
     const double inv_eps = 1. / eps;

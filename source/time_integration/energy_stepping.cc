@@ -22,37 +22,6 @@ namespace estep
      * length), in units of time: small, since the search doubles its
      * windows (about 20 more enclosures for a first step of order 1). */
     constexpr double first_window_of_a_run = 0x1p-20;
-
-    /** @p work(r) for the ranges r of coordinates that this rank keeps
-     * current (MechanicalSystem::kept_coordinates(): every coordinate, in
-     * blocks, unless the system's state is shared among MPI ranks), on the
-     * threads. */
-    template <typename Work>
-    void
-    for_each_kept_range(const MechanicalSystem &system, const Work &work)
-    {
-      const unsigned int n = system.n_dofs();
-      if (const std::vector<BlockRange> *kept = system.kept_coordinates())
-        for_each_block(kept->size(),
-                       [&](const unsigned int i) { work((*kept)[i]); });
-      else
-        for_each_block(n_blocks(n),
-                       [&](const unsigned int b) { work(block_range(b, n)); });
-    }
-
-    /** The sum of @p term(b) over the blocks b of coordinates, added in
-     * block order: on several MPI ranks that share the system's state, each
-     * computes those of its own blocks (which it keeps), and the terms are
-     * shared. The same bits on any number of threads and ranks. */
-    template <typename T, typename Term>
-    T
-    sum_over_coordinate_blocks(const MechanicalSystem &system, const Term &term)
-    {
-      const unsigned int n_coordinate_blocks = n_blocks(system.n_dofs());
-      return system.kept_coordinates() ?
-               sum_over_distributed_blocks<T>(n_coordinate_blocks, term) :
-               sum_over_blocks<T>(n_coordinate_blocks, term);
-    }
   } // namespace
 
 

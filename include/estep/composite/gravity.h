@@ -62,8 +62,8 @@ namespace estep
     const Vector &
     weights() const;
 
-    /** The gravitational potential alone, -sum_i w_i q_i (compensated
-     * sum). */
+    /** The gravitational potential alone, -sum_i w_i q_i (compensated_dot()
+     * of every coordinate of @p q; not collective). */
     double
     gravitational_potential(const Vector &q) const;
 
@@ -75,6 +75,21 @@ namespace estep
     /** grad V_base(q) - w. */
     void
     gradient(const Vector &q, Vector &g) const override;
+
+    /** @name The state shared among MPI ranks as the base shares it: the
+     * weights' part of V and of a flight is a sum over the blocks of
+     * coordinates (as compensated_dot() takes it), and each rank computes
+     * that of its own blocks.
+     * @{ */
+    const std::vector<BlockRange> *
+    kept_coordinates() const override;
+
+    void
+    kept_gradient(const Vector &q, Vector &g) const override;
+
+    void
+    complete_state(Vector &x) const override;
+    /** @} */
 
     /**
      * The base's flight plus the linear term l(s) = c0 + c1 s, c0 = -w . q,
@@ -111,15 +126,24 @@ namespace estep
   private:
     std::array<double, 3> g;
     Vector                w;
+
+    /** w . @p x as compensated_dot() computes it, with sum_i |w_i x_i| into
+     * @p magnitude if given; from the kept coordinates of @p x (collective)
+     * where the base shares its state. */
+    double
+    weighted_sum(const Vector &x, double *magnitude = nullptr) const;
   };
 
   /**
    * The dot product sum_i x_i y_i of two vectors of equal size, computed as in
    * twice the working precision and then rounded (Dot2 of Ogita, Rump and
-   * Oishi, 2005): its error is at most one unit of round-off of the result
-   * plus gamma_n^2 sum_i |x_i y_i| (gamma_n = n u / (1 - n u), u the unit
-   * round-off), below one unit of round-off of sum_i |x_i y_i| for n up to
-   * 10^7. Optionally, @p magnitude receives sum_i |x_i y_i| (plainly summed).
+   * Oishi, 2005; in blocks of block_size coordinates, on the threads, the
+   * blocks' running sums joined in block order by the same error-free
+   * sums, so the bits do not depend on the threads): its error is at most one
+   * unit of round-off of the result plus gamma_n^2 sum_i |x_i y_i| (gamma_n = n
+   * u / (1 - n u), u the unit round-off), below one unit of round-off of sum_i
+   * |x_i y_i| for n up to 10^7. Optionally, @p magnitude receives sum_i |x_i
+   * y_i| (plainly summed).
    */
   double
   compensated_dot(const Vector &x,

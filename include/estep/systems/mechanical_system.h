@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <estep/base/distributed_blocks.h>
 #include <estep/base/parallel_blocks.h>
 #include <estep/systems/free_flight.h>
 
@@ -223,6 +224,41 @@ namespace estep
   /** Kinetic energy 1/2 v^T M v with the lumped mass of @p system. */
   double
   kinetic_energy(const MechanicalSystem &system, const Vector &v);
+
+  /** @p work(r) for the ranges r of coordinates that this rank keeps
+   * current (MechanicalSystem::kept_coordinates(): every coordinate, in
+   * blocks, unless the system's state is shared among MPI ranks), on the
+   * threads. */
+  template <typename Work>
+  void
+  for_each_kept_range(const MechanicalSystem &system, const Work &work)
+  {
+    const unsigned int n = system.n_dofs();
+    if (const std::vector<BlockRange> *kept = system.kept_coordinates())
+      for_each_block(kept->size(),
+                     [&](const unsigned int i) { work((*kept)[i]); });
+    else
+      for_each_block(n_blocks(n),
+                     [&](const unsigned int b) { work(block_range(b, n)); });
+  }
+
+  /**
+   * The sum of @p term(b) over the blocks b of @p system's coordinates
+   * (parallel_blocks.h), added in block order. On several MPI ranks that
+   * share the system's state (MechanicalSystem::kept_coordinates()) each
+   * computes the terms of its own blocks, which it keeps, and they are
+   * shared (collective); else every rank computes them all. The same bits
+   * on any number of threads and ranks.
+   */
+  template <typename T, typename Term>
+  T
+  sum_over_coordinate_blocks(const MechanicalSystem &system, const Term &term)
+  {
+    const unsigned int n_coordinate_blocks = n_blocks(system.n_dofs());
+    return system.kept_coordinates() ?
+             sum_over_distributed_blocks<T>(n_coordinate_blocks, term) :
+             sum_over_blocks<T>(n_coordinate_blocks, term);
+  }
 } // namespace estep
 
 #endif
