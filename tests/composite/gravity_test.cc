@@ -203,6 +203,37 @@ TEST(Gravity, CompensatedDotProduct)
   EXPECT_THROW(estep::compensated_dot(x, z), std::invalid_argument);
 }
 
+TEST(Gravity, CompensatedDotProductAcrossBlocks)
+{
+  // The large terms cancel across blocks of coordinates (1e16 in the first,
+  // -1e16 in the third), so the blocks' sums must be joined without loss:
+  // a plain sum of the blocks' results loses the ones in between.
+  const unsigned int n = 3 * estep::block_size + 5;
+  Vector             x(n), y(n);
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      x[i] = 1.;
+      y[i] = 1.;
+    }
+  x[10]                    = 1e16;
+  x[2 * estep::block_size] = -1e16;
+  x[estep::block_size + 3] = 0.1;
+  y[estep::block_size + 3] = 3.;
+  const long double exact  = (n - 3) + 3.L * static_cast<long double>(0.1);
+  // The same bits on any number of threads.
+  estep::set_thread_count(1);
+  double       magnitude = 0.;
+  const double dot       = estep::compensated_dot(x, y, &magnitude);
+  EXPECT_NEAR(dot, static_cast<double>(exact), 1e-12);
+  EXPECT_NEAR(magnitude, 2e16, 1e-12 * 2e16); // summed plainly
+  for (const unsigned int threads : {2u, 3u})
+    {
+      estep::set_thread_count(threads);
+      EXPECT_EQ(estep::compensated_dot(x, y), dot) << threads << " threads";
+    }
+  estep::set_thread_count(1);
+}
+
 TEST(Gravity, WeightsAndRejectedArguments)
 {
   const Gravity &system = deformed_cube_under_gravity();
