@@ -244,6 +244,7 @@ namespace estep
     : SystemDecorator(std::move(base))
     , g(acceleration)
   {
+    shares_base_state      = true;
     const unsigned int dim = base_system->spatial_dimension();
     for (const double x : g)
       if (!std::isfinite(x))
@@ -350,30 +351,14 @@ namespace estep
 
 
 
-  const std::vector<BlockRange> *
-  Gravity::kept_coordinates() const
-  {
-    return base_system->kept_coordinates();
-  }
-
-
-
   void
   Gravity::kept_gradient(const Vector &q, Vector &grad) const
   {
-    base_system->kept_gradient(q, grad);
+    base_kept_gradient(q, grad);
     for_each_kept_range(*this, [&](const BlockRange range) {
       for (unsigned int i = range.begin; i < range.end; ++i)
         grad[i] -= w[i];
     });
-  }
-
-
-
-  void
-  Gravity::complete_state(Vector &x) const
-  {
-    base_system->complete_state(x);
   }
 
 

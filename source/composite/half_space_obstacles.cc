@@ -480,7 +480,7 @@ namespace estep
                                               1) == std::ptrdiff_t(dim);
                           });
           }
-        shares_state = largest_over_ranks(every ? 0 : 1) == 0;
+        shares_base_state = largest_over_ranks(every ? 0 : 1) == 0;
       }
   }
 
@@ -510,33 +510,11 @@ namespace estep
 
 
 
-  const std::vector<BlockRange> *
-  HalfSpaceObstacles::kept_coordinates() const
-  {
-    return shares_state ? base_system->kept_coordinates() : nullptr;
-  }
-
-
-
   void
   HalfSpaceObstacles::kept_gradient(const Vector &q, Vector &g) const
   {
-    if (!shares_state)
-      {
-        gradient(q, g);
-        return;
-      }
-    base_system->kept_gradient(q, g);
+    base_kept_gradient(q, g);
     add_obstacle_gradient(q, g);
-  }
-
-
-
-  void
-  HalfSpaceObstacles::complete_state(Vector &x) const
-  {
-    if (shares_state)
-      base_system->complete_state(x);
   }
 
 

@@ -13,7 +13,10 @@ namespace estep
     , to_bodies(std::move(to_bodies))
     , scene_name(name)
     , has_supports(has_supports)
-  {}
+  {
+    // The scene adds nothing to V.
+    shares_base_state = true;
+  }
 
 
 
@@ -97,24 +100,6 @@ namespace estep
   }
 
 
-
-  const std::vector<BlockRange> *
-  Scene::kept_coordinates() const
-  {
-    return base().kept_coordinates();
-  }
-
-  void
-  Scene::kept_gradient(const Vector &q, Vector &g) const
-  {
-    base().kept_gradient(q, g);
-  }
-
-  void
-  Scene::complete_state(Vector &x) const
-  {
-    base().complete_state(x);
-  }
 
   void
   Scene::obstacle_surface(std::vector<double>       &points,

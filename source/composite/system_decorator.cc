@@ -157,4 +157,43 @@ namespace estep
   {
     return base_system->penalty_energy_scale();
   }
+
+
+
+  const std::vector<BlockRange> *
+  SystemDecorator::kept_coordinates() const
+  {
+    return shares_base_state ? base_system->kept_coordinates() : nullptr;
+  }
+
+
+
+  void
+  SystemDecorator::kept_gradient(const Vector &q, Vector &g) const
+  {
+    if (shares_base_state)
+      base_system->kept_gradient(q, g);
+    else
+      gradient(q, g);
+  }
+
+
+
+  void
+  SystemDecorator::complete_state(Vector &x) const
+  {
+    if (shares_base_state)
+      base_system->complete_state(x);
+  }
+
+
+
+  void
+  SystemDecorator::base_kept_gradient(const Vector &q, Vector &g) const
+  {
+    if (shares_base_state)
+      base_system->kept_gradient(q, g);
+    else
+      base_system->gradient(q, g);
+  }
 } // namespace estep

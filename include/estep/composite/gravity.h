@@ -76,20 +76,12 @@ namespace estep
     void
     gradient(const Vector &q, Vector &g) const override;
 
-    /** @name The state shared among MPI ranks as the base shares it: the
-     * weights' part of V and of a flight is a sum over the blocks of
-     * coordinates (as compensated_dot() takes it), and each rank computes
-     * that of its own blocks.
-     * @{ */
-    const std::vector<BlockRange> *
-    kept_coordinates() const override;
-
+    /** The base's kept gradient minus w at the kept coordinates: gravity
+     * shares the state as the base shares it, since the weights' part of V
+     * and of a flight is a sum over the blocks of coordinates (as
+     * compensated_dot() takes it), of which each rank computes its own. */
     void
     kept_gradient(const Vector &q, Vector &g) const override;
-
-    void
-    complete_state(Vector &x) const override;
-    /** @} */
 
     /**
      * The base's flight plus the linear term l(s) = c0 + c1 s, c0 = -w . q,

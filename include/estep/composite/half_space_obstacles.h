@@ -96,20 +96,13 @@ namespace estep
     void
     gradient(const Vector &q, Vector &g) const override;
 
-    /** @name The state shared among MPI ranks as the base shares it, where
-     * every rank keeps every contact point (a ContactSystem's bodies keep
-     * their boundaries), since the obstacles read those alone; else every
-     * coordinate (the default). Decided when constructed (collective).
-     * @{ */
-    const std::vector<BlockRange> *
-    kept_coordinates() const override;
-
+    /** The base's kept gradient plus grad I at the contact points. The
+     * state is shared among MPI ranks as the base shares it where every rank
+     * keeps every contact point (a ContactSystem's bodies keep their
+     * boundaries), since the obstacles read those alone; else every
+     * coordinate is kept. Decided when constructed (collective). */
     void
     kept_gradient(const Vector &q, Vector &g) const override;
-
-    void
-    complete_state(Vector &x) const override;
-    /** @} */
 
     /**
      * Impenetrability mode: the base's flight. Penalty mode: the base's
@@ -249,9 +242,6 @@ namespace estep
     double                    eps;
     double                    depth_limit;
     unsigned int              dim;
-    /** Whether the state is shared as the base shares it (see
-     * kept_coordinates()). */
-    bool shares_state = false;
 
     /** Add grad I at the contact points to @p g (penalty mode). */
     void

@@ -83,19 +83,6 @@ namespace estep
     obstacle_surface(std::vector<double>       &points,
                      std::vector<unsigned int> &triangles) const override;
 
-    /** @name The state shared among MPI ranks as the system shares it (the
-     * scene adds nothing to V).
-     * @{ */
-    const std::vector<BlockRange> *
-    kept_coordinates() const override;
-
-    void
-    kept_gradient(const Vector &q, Vector &g) const override;
-
-    void
-    complete_state(Vector &x) const override;
-    /** @} */
-
     /** Whether nothing but the bodies themselves exchanges momentum with
      * them: no supports, no obstacles (uniform gravity leaves their relative
      * motion alone). */

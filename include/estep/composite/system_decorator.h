@@ -77,8 +77,38 @@ namespace estep
     double
     penalty_energy_scale() const override;
 
+    /**
+     * @name The state shared among MPI ranks
+     * As the base shares it if shares_base_state, else every coordinate (see
+     * MechanicalSystem). kept_gradient(): the base's kept_gradient() if
+     * shared, else gradient(); a decorator that adds to the gradient
+     * overrides it with base_kept_gradient() and its own part at the kept
+     * coordinates.
+     * @{
+     */
+    const std::vector<BlockRange> *
+    kept_coordinates() const override;
+
+    void
+    kept_gradient(const Vector &q, Vector &g) const override;
+
+    void
+    complete_state(Vector &x) const override;
+    /** @} */
+
   protected:
     std::shared_ptr<const MechanicalSystem> base_system;
+
+    /** Whether the state is shared among MPI ranks as the base shares it:
+     * set by a decorator whose own terms read only coordinates that the
+     * base keeps on every rank, and which adds its part of the gradient in
+     * kept_gradient(). False by default. */
+    bool shares_base_state = false;
+
+    /** The base's kept_gradient() if the state is shared as the base shares
+     * it, else the base's gradient(). */
+    void
+    base_kept_gradient(const Vector &q, Vector &g) const;
   };
 } // namespace estep
 
