@@ -577,20 +577,13 @@ namespace estep
       }
     for (std::size_t j = 0; j < shared.owned.size(); ++j)
       g[shared.owned[j]] = shared.own_gradient[j];
+    // The surfaces' points are no body's: every rank computes their
+    // gradient, the contact's alone.
     std::fill(g.begin() + 3 * n_body_points(), g.end(), 0.);
     if (shared.exchange == nullptr)
-      {
-        std::vector<dealii::types::global_dof_index> ghosts(
-          q.size(), dealii::numbers::invalid_dof_index);
-        std::vector<char> computed(q.size(), 0);
-        for (const auto i : shared.owned)
-          computed[i] = 1;
-        for (const BlockRange range : shared.kept)
-          for (unsigned int i = range.begin; i < range.end; ++i)
-            if (!computed[i] && i < 3 * n_body_points())
-              ghosts[i] = i;
-        shared.exchange = std::make_unique<GhostExchange>(shared.owned, ghosts);
-      }
+      shared.exchange = std::make_unique<GhostExchange>(shared.owned,
+                                                        shared.kept,
+                                                        3 * n_body_points());
     shared.exchange->send(shared.own_gradient.data(), g.data());
     if (penalty)
       penalty->add_gradient(q.data(), q.size(), g.data());

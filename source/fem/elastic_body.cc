@@ -333,7 +333,8 @@ namespace estep
       for (std::size_t j = 0; j < owned.size(); ++j)
         g[owned[j]] = mine[j];
     if (ghost_exchange == nullptr)
-      ghost_exchange = std::make_unique<GhostExchange>(owned, shared.ghosts);
+      ghost_exchange =
+        std::make_unique<GhostExchange>(owned, shared.kept, n_dofs());
     ghost_exchange->send(mine, g.data());
   }
 
@@ -462,11 +463,6 @@ namespace estep
         for (unsigned int k = first; k < first + points_per_rank[me]; ++k)
           for (unsigned int i = 0; i < 3; ++i)
             owned.push_back(3 * points[k] + i);
-        ghosts.assign(n_coordinates, dealii::numbers::invalid_dof_index);
-        for (const BlockRange range : kept)
-          for (unsigned int i = range.begin; i < range.end; ++i)
-            if (point_rank[i / 3] != me)
-              ghosts[i] = i;
       }
     // A part whose blocks bring no point of their own (the cells of a short
     // last block may all have their points in earlier cells) has nothing to

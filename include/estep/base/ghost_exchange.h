@@ -3,6 +3,8 @@
 
 #include <deal.II/base/types.h>
 
+#include <estep/base/parallel_blocks.h>
+
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -26,12 +28,14 @@ namespace estep
   public:
     /**
      * @p owned: the coordinates this rank computes, in the order of the
-     * values send() takes. @p ghosts: one entry per coordinate of the state,
-     * the coordinate's own index where this rank keeps it but another rank
-     * computes it, dealii::numbers::invalid_dof_index elsewhere. Collective.
+     * values send() takes. @p kept: the coordinates it keeps current
+     * (MechanicalSystem::kept_coordinates()); those below @p n_exchanged
+     * that it does not own are its ghosts, each computed by one other rank.
+     * Collective.
      */
     GhostExchange(const std::vector<dealii::types::global_dof_index> &owned,
-                  const std::vector<dealii::types::global_dof_index> &ghosts);
+                  const std::vector<BlockRange>                      &kept,
+                  const unsigned int n_exchanged);
 
     ~GhostExchange();
 

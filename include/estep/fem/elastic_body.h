@@ -329,10 +329,6 @@ namespace estep
       /** The coordinates of this rank's points, in the order of its
        * points' gradient (as gradient_of_own_points() lists them). */
       std::vector<dealii::types::global_dof_index> owned;
-      /** Of the kept coordinates, those of other ranks' points: each is
-       * its own index, every other coordinate numbers::invalid_dof_index
-       * (the ghosts of ghost_exchange, in place in a state vector). */
-      std::vector<dealii::types::global_dof_index> ghosts;
     };
     mutable GradientParts gradient_parts;
     /** The gradient parts for the current numbers of threads and ranks. */
