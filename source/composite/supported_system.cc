@@ -2,6 +2,8 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 
+#include <estep/base/distributed_blocks.h>
+#include <estep/base/ghost_exchange.h>
 #include <estep/composite/supported_system.h>
 
 #include <algorithm>
@@ -84,7 +86,114 @@ namespace estep
 
 
 
+  struct SupportedSystem::SharedState
+  {
+    unsigned int            ranks = 0;
+    std::vector<BlockRange> kept;
+    /** The free coordinates of this rank's blocks of the base's coordinates,
+     * which the base keeps: their gradient goes to the ranks that receive
+     * it. */
+    std::vector<dealii::types::global_dof_index> sent;
+    /** The free coordinates of this rank's blocks that the base does not
+     * keep here. */
+    std::vector<BlockRange>        received;
+    std::vector<double>            sent_gradient;
+    std::unique_ptr<GhostExchange> exchange;
+  };
+
+
+
   SupportedSystem::~SupportedSystem() = default;
+
+
+
+  SupportedSystem::SharedState *
+  SupportedSystem::current_shared_state() const
+  {
+    const std::vector<BlockRange> *base_kept = base_system->kept_coordinates();
+    if (base_kept == nullptr)
+      return nullptr;
+    if (shared_state && shared_state->ranks == rank_count())
+      return shared_state.get();
+    shared_state         = std::make_unique<SharedState>();
+    SharedState &shared  = *shared_state;
+    shared.ranks         = rank_count();
+    const unsigned int n = n_dofs();
+    std::vector<char>  read(n, 0);
+    for (const BlockRange range : *base_kept)
+      for (unsigned int i = range.begin; i < range.end; ++i)
+        if (reduced_dofs[i] != invalid)
+          read[reduced_dofs[i]] = 1;
+    // This rank's blocks of the free coordinates (rank_cells(): the items of
+    // its blocks), and of the base's.
+    const BlockRange own = rank_cells(n, this_rank());
+    for (unsigned int k = own.begin; k < own.end; ++k)
+      if (!read[k])
+        {
+          if (!shared.received.empty() && shared.received.back().end == k)
+            ++shared.received.back().end;
+          else
+            shared.received.push_back({k, k + 1});
+        }
+    shared.kept = kept_coordinate_ranges(std::move(read));
+    // The base keeps its own blocks of coordinates (MechanicalSystem::
+    // kept_coordinates()), so the rank whose blocks hold a coordinate has
+    // its gradient.
+    const BlockRange base_own = rank_cells(base_system->n_dofs(), this_rank());
+    for (unsigned int i = base_own.begin; i < base_own.end; ++i)
+      if (reduced_dofs[i] != invalid)
+        shared.sent.push_back(reduced_dofs[i]);
+    shared.sent_gradient.resize(shared.sent.size());
+    return &shared;
+  }
+
+
+
+  const std::vector<BlockRange> *
+  SupportedSystem::kept_coordinates() const
+  {
+    const SharedState *shared = current_shared_state();
+    return shared ? &shared->kept : nullptr;
+  }
+
+
+
+  void
+  SupportedSystem::kept_gradient(const Vector &q, Vector &g) const
+  {
+    SharedState *shared = current_shared_state();
+    if (shared == nullptr)
+      {
+        gradient(q, g);
+        return;
+      }
+    scatter_kept(q, scratch_q);
+    base_system->kept_gradient(scratch_q, scratch_g);
+    if (g.size() != n_dofs())
+      g.reinit(n_dofs());
+    for (const BlockRange range : shared->kept)
+      for (unsigned int k = range.begin; k < range.end; ++k)
+        g[k] = scratch_g[free_dofs[k]];
+    for (std::size_t j = 0; j < shared->sent.size(); ++j)
+      shared->sent_gradient[j] = g[shared->sent[j]];
+    if (shared->exchange == nullptr)
+      shared->exchange = std::make_unique<GhostExchange>(shared->sent,
+                                                         shared->received,
+                                                         n_dofs());
+    shared->exchange->send(shared->sent_gradient.data(), g.data());
+  }
+
+
+
+  void
+  SupportedSystem::complete_state(Vector &x) const
+  {
+    if (current_shared_state() == nullptr)
+      return;
+    scatter(x, scratch_q);
+    base_system->complete_state(scratch_q);
+    gather(scratch_q, x);
+  }
 
 
 
@@ -107,7 +216,7 @@ namespace estep
   double
   SupportedSystem::energy(const Vector &q) const
   {
-    scatter(q, scratch_q);
+    scatter_kept(q, scratch_q);
     return base_system->energy(scratch_q);
   }
 
@@ -126,8 +235,8 @@ namespace estep
   std::unique_ptr<FreeFlight>
   SupportedSystem::free_flight(const Vector &q, const Vector &v) const
   {
-    scatter(q, flight_q);
-    scatter(v, flight_v); // zero on the fixed points, always
+    scatter_kept(q, flight_q);
+    scatter_kept(v, flight_v); // zero on the fixed points, always
     return base_system->free_flight(flight_q, flight_v);
   }
 
@@ -238,7 +347,7 @@ namespace estep
   std::string
   SupportedSystem::penetration(const Vector &q) const
   {
-    scatter(q, scratch_q);
+    scatter_kept(q, scratch_q);
     return base_system->penetration(scratch_q);
   }
 
@@ -308,6 +417,24 @@ namespace estep
     AssertDimension(full.size(), reduced_dofs.size());
     for (unsigned int k = 0; k < free_dofs.size(); ++k)
       full[free_dofs[k]] = q_free[k];
+  }
+
+
+
+  void
+  SupportedSystem::scatter_kept(const Vector &q_free, Vector &full) const
+  {
+    const SharedState *shared = current_shared_state();
+    if (shared == nullptr)
+      {
+        scatter(q_free, full);
+        return;
+      }
+    AssertDimension(q_free.size(), free_dofs.size());
+    AssertDimension(full.size(), reduced_dofs.size());
+    for (const BlockRange range : shared->kept)
+      for (unsigned int k = range.begin; k < range.end; ++k)
+        full[free_dofs[k]] = q_free[k];
   }
 
 

@@ -335,22 +335,6 @@ namespace estep
 
 
   double
-  EnergyStepping::current_kinetic_energy() const
-  {
-    const Vector &inverse_mass = system.inverse_mass();
-    return 0.5 * sum_over_coordinate_blocks<double>(
-                   system, [&](const unsigned int b) {
-                     const BlockRange dofs  = block_range(b, v.size());
-                     double           twice = 0.;
-                     for (unsigned int i = dofs.begin; i < dofs.end; ++i)
-                       twice += v[i] * v[i] / inverse_mass[i];
-                     return twice;
-                   });
-  }
-
-
-
-  double
   EnergyStepping::measure_force_mass_norm()
   {
     system.kept_gradient(q, gradient_buffer);

@@ -1,8 +1,10 @@
 #include <deal.II/base/parameter_handler.h>
 
+#include <estep/base/parallel_blocks.h>
 #include <estep/time_integration/explicit_newmark.h>
 #include <estep/time_integration/integrator_registry.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -46,11 +48,13 @@ namespace estep
   void
   ExplicitNewmark::compute_acceleration(const Vector &x, Vector &a)
   {
-    system.gradient(x, gradient_buffer);
+    system.kept_gradient(x, gradient_buffer);
     ++n_gradients;
     const Vector &inverse_mass = system.inverse_mass();
-    for (unsigned int i = 0; i < x.size(); ++i)
-      a[i] = -inverse_mass[i] * gradient_buffer[i];
+    for_each_kept_range(system, [&](const BlockRange kept) {
+      for (unsigned int i = kept.begin; i < kept.end; ++i)
+        a[i] = -inverse_mass[i] * gradient_buffer[i];
+    });
   }
 
 
@@ -66,20 +70,33 @@ namespace estep
     // dt), never followed by a step of round-off length.
     const double tau = (remaining < dt * (1. + 1e-6)) ? remaining : dt;
 
-    q_old = q;
-    v_old = v;
-    for (unsigned int i = 0; i < q.size(); ++i)
-      {
-        q[i] += tau * v[i] + 0.5 * tau * tau * acceleration[i];
-        v[i] += 0.5 * tau * acceleration[i];
-      }
+    // On several MPI ranks, the coordinates this rank keeps alone
+    // (MechanicalSystem::kept_coordinates()).
+    for_each_kept_range(system, [&](const BlockRange kept) {
+      for (unsigned int i = kept.begin; i < kept.end; ++i)
+        {
+          q_old[i] = q[i];
+          v_old[i] = v[i];
+          q[i] += tau * v[i] + 0.5 * tau * tau * acceleration[i];
+          v[i] += 0.5 * tau * acceleration[i];
+        }
+    });
     compute_acceleration(q, acceleration);
-    bool finite = true;
-    for (unsigned int i = 0; i < q.size(); ++i)
-      {
+    for_each_kept_range(system, [&](const BlockRange kept) {
+      for (unsigned int i = kept.begin; i < kept.end; ++i)
         v[i] += 0.5 * tau * acceleration[i];
-        finite = finite && std::isfinite(v[i]) && std::isfinite(q[i]);
-      }
+    });
+    const auto is_finite = [](const double x) { return std::isfinite(x); };
+    const bool finite    = sum_over_coordinate_blocks<unsigned int>(
+                          system, [&](const unsigned int b) {
+                            const BlockRange dofs = block_range(b, q.size());
+                            return unsigned(std::all_of(q.begin() + dofs.begin,
+                                                        q.begin() + dofs.end,
+                                                        is_finite) &&
+                                            std::all_of(v.begin() + dofs.begin,
+                                                        v.begin() + dofs.end,
+                                                        is_finite));
+                          }) == n_blocks(q.size());
 
     t_previous = t;
     t          = (tau == remaining) ? t_limit : t + tau;
@@ -91,6 +108,15 @@ namespace estep
                 << ": the time step is beyond the stability limit.";
         throw UnstableRun(message.str());
       }
+  }
+
+
+
+  void
+  ExplicitNewmark::complete_state()
+  {
+    for (Vector *x : {&q, &v, &q_old, &v_old, &acceleration})
+      system.complete_state(*x);
   }
 
 

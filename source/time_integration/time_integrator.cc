@@ -1,3 +1,4 @@
+#include <estep/base/parallel_blocks.h>
 #include <estep/time_integration/time_integrator.h>
 
 #include <algorithm>
@@ -52,6 +53,8 @@ namespace estep
               (d00 * q_old[i] + d01 * q[i]) / tau + d10 * v_old[i] + d11 * v[i];
           }
       }
+    system.complete_state(snapshot.q);
+    system.complete_state(snapshot.v);
     if (with_energies)
       {
         snapshot.kinetic_energy   = kinetic_energy(system, snapshot.v);
@@ -83,7 +86,15 @@ namespace estep
   double
   TimeIntegrator::current_kinetic_energy() const
   {
-    return kinetic_energy(system, v);
+    const Vector &inverse_mass = system.inverse_mass();
+    return 0.5 * sum_over_coordinate_blocks<double>(
+                   system, [&](const unsigned int b) {
+                     const BlockRange dofs  = block_range(b, v.size());
+                     double           twice = 0.;
+                     for (unsigned int i = dofs.begin; i < dofs.end; ++i)
+                       twice += v[i] * v[i] / inverse_mass[i];
+                     return twice;
+                   });
   }
 
 

@@ -136,6 +136,13 @@ same_on_ranks ida "$files/spinning_cube_ida_bdf.prm" --set "Elastic body/Mesh/Su
 same_on_ranks ida_one_block "$files/spinning_cube_ida_bdf.prm" \
   --set "Elastic body/Mesh/Subdivisions=3" --set "Time integration/End time=1" \
   --set "Postprocessors/List=history"
+# Explicit Newmark shares the state as energy-stepping does: each process keeps its part, and the
+# history's rows, the checkpoints (which hold the acceleration and the previous step too) and
+# field output complete it. The cube of 24,000 cells.
+same_on_ranks newmark "$files/spinning_cube_newmark_0.0082.prm" \
+  --set "Elastic body/Mesh/Subdivisions=10" --set "Time integration/End time=0.5" \
+  --set "Postprocessors/List=history"
+kept_as_expected newmark-2x1 0.75
 
 # Field output in HDF5: every process writes its rows into the same files, which hold the
 # same datasets, to the last bit, as those of one process, and the same series. The cube of
@@ -206,6 +213,19 @@ same_on_ranks drop "$files/scene_ball_drop.prm" --set "Time integration/End time
   --set "Contact/Mode=penalty" --set "Postprocessors/List=history, contact monitor"
 grep -q '"coordinates kept by each process"' drop-2x1/summary.json ||
   fail "drop-2x1: summary.json records no coordinates kept by each process"
+# Supports renumber the coordinates: a rank keeps the free coordinates its bodies keep and its own
+# blocks of the free ones, some of whose gradient other ranks compute. The cantilever (1,920
+# cells, 2 blocks), clamped at one end; and the ball dropped onto a floor of triangles in
+# impenetrable contact (a surface's points are held where they are as supported points are).
+same_on_ranks cantilever "$files/scene_cantilever.prm" --set "Time integration/End time=1" \
+  --set "Postprocessors/List=history"
+kept_as_expected cantilever-2x1 0.75
+printf 'solid floor\n facet normal 0 0 1\n  outer loop\n   vertex -1 -1 0\n   vertex 1 -1 0\n   vertex 1 1 0\n  endloop\n endfacet\n facet normal 0 0 1\n  outer loop\n   vertex -1 -1 0\n   vertex 1 1 0\n   vertex -1 1 0\n  endloop\n endfacet\nendsolid floor\n' > floor.stl
+same_on_ranks drop_on_surface "$files/scene_ball_drop.prm" --set "Time integration/End time=0.318" \
+  --set "Scene/Obstacles/Half-spaces=" --set "Scene/Obstacles/Surface files=floor.stl" \
+  --set "Postprocessors/List=history, contact monitor"
+grep -q '"coordinates kept by each process"' drop_on_surface-2x1/summary.json ||
+  fail "drop_on_surface-2x1: summary.json records no coordinates kept by each process"
 
 # SIGTERM to the launcher after the first checkpoint: it passes the signal to both processes,
 # which end after the same step (status interrupted, a final checkpoint; each exits with 143,

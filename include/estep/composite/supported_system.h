@@ -32,6 +32,12 @@ namespace estep
    * with its own sparsity pattern (built on first use from the base's);
    * observables are the base's of the expanded state.
    *
+   * On several MPI ranks it shares the state where its base does
+   * (kept_coordinates()): a rank keeps the free coordinates its base keeps,
+   * and its own blocks of the free coordinates, where the sums over them are
+   * taken. The gradient of those of its blocks that the base does not keep
+   * comes from the ranks whose blocks of the base's coordinates hold them.
+   *
    * The evaluations use internal scratch vectors (no allocation per call):
    * not thread-safe, like the systems it decorates. The base's free flight
    * receives vectors owned by this object that stay unchanged until the next
@@ -100,6 +106,23 @@ namespace estep
     void
     hessian(const Vector &q, dealii::SparseMatrix<double> &H) const override;
 
+    /** Where the base shares its state among MPI ranks: the free
+     * coordinates whose base coordinates the base keeps, and this rank's
+     * blocks of the free coordinates. Else nullptr. */
+    const std::vector<BlockRange> *
+    kept_coordinates() const override;
+
+    /** The base's kept_gradient() at the expanded configuration, restricted
+     * to the free points, and at this rank's blocks of free coordinates that
+     * the base does not keep, the gradient of the ranks that compute it.
+     * Collective. */
+    void
+    kept_gradient(const Vector &q, Vector &g) const override;
+
+    /** The base's complete_state() of the expanded state. Collective. */
+    void
+    complete_state(Vector &x) const override;
+
     /** The base's observables of the expanded state. */
     std::vector<double>
     observables(const Vector &q, const Vector &v) const override;
@@ -142,6 +165,12 @@ namespace estep
     void
     scatter(const Vector &q_free, Vector &full) const;
 
+    /** scatter() of the kept coordinates alone (kept_coordinates()), which
+     * are all the base reads of its energy, gradient, flight and
+     * penetration. */
+    void
+    scatter_kept(const Vector &q_free, Vector &full) const;
+
     /** Write the free entries of @p full into @p part (resized if needed). */
     void
     gather(const Vector &full, Vector &part) const;
@@ -168,6 +197,16 @@ namespace estep
     mutable Vector scratch_q, scratch_v, scratch_g;
     /** The expanded line of the last free_flight(). */
     mutable Vector flight_q, flight_v;
+
+    /** What a state shared among MPI ranks needs (see kept_coordinates()):
+     * the kept coordinates, those whose gradient this rank sends and those
+     * it receives, and their exchange. */
+    struct SharedState;
+    mutable std::unique_ptr<SharedState> shared_state;
+    /** The shared state for the current number of ranks, or nullptr where
+     * the base does not share its state. */
+    SharedState *
+    current_shared_state() const;
 
     /** The block pattern and the base's Hessian (built on first use). */
     mutable std::unique_ptr<dealii::SparsityPattern>      sparsity;

@@ -79,9 +79,6 @@ namespace estep
     void
     complete_state() override;
 
-    double
-    current_kinetic_energy() const override;
-
     /** Exact: free-flight interpolation on the last flight. */
     Snapshot
     dense_output(const double t) const override;

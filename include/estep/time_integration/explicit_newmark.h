@@ -32,6 +32,12 @@ namespace estep
     void
     step(const double t_limit) override;
 
+    /** The position, velocity, acceleration and previous state, each of
+     * which a rank keeps only in part where the system shares its state
+     * among MPI ranks (MechanicalSystem::kept_coordinates()). Collective. */
+    void
+    complete_state() override;
+
     Snapshot
     dense_output(const double t) const override;
 

@@ -85,9 +85,10 @@ namespace estep
     virtual void
     complete_state();
 
-    /** The kinetic energy at time(), the same on every MPI rank (from the
-     * kept coordinates alone, where the integrator keeps only some). The
-     * default: kinetic_energy() of velocity(). */
+    /** The kinetic energy at time(), the same on every MPI rank: summed
+     * over the fixed blocks of coordinates, each rank its own where the
+     * system shares its state (sum_over_coordinate_blocks()), so from the
+     * kept coordinates alone where the integrator keeps only some. */
     virtual double
     current_kinetic_energy() const;
 
@@ -214,7 +215,9 @@ namespace estep
     /**
      * Dense output of a step-based scheme: the cubic Hermite interpolant of
      * (q_old, v_old) at t_previous and (q, v) at t (third order), with the
-     * energies at time @p time if @p with_energies.
+     * energies at time @p time if @p with_energies. It takes the kept
+     * coordinates (MechanicalSystem::kept_coordinates()) and completes the
+     * snapshot: collective.
      */
     Snapshot
     hermite_dense_output(const double  time,
