@@ -27,12 +27,22 @@ namespace estep
     {
       double sum = 0., error = 0., gross = 0.;
 
-      /** Dot2 of @p x and @p y over @p range. */
+      /** Dot2 of @p x and @p y over the indices of @p range that are
+       * @p phase modulo @p step: the others must have x_i = 0, whose terms
+       * (a product, its error and its magnitude, all zeros) would change no
+       * bit of sums that start at +0 (and so are never -0). */
       static CompensatedDot
-      of(const Vector &x, const Vector &y, const BlockRange range)
+      of(const Vector      &x,
+         const Vector      &y,
+         const BlockRange   range,
+         const unsigned int step  = 1,
+         const unsigned int phase = 0)
       {
         CompensatedDot dot;
-        for (unsigned int i = range.begin; i < range.end; ++i)
+        for (unsigned int i =
+               range.begin + (phase + step - range.begin % step) % step;
+             i < range.end;
+             i += step)
           {
             const double product = x[i] * y[i];
             dot.error += std::fma(x[i], y[i], -product);
@@ -287,6 +297,16 @@ namespace estep
             "> has no positive finite mass to give a weight.");
         w[i] = gc / inverse_mass[i];
       }
+    // Gravity along one axis: the weights of the other coordinates are
+    // zero, and the sums skip them.
+    if (std::count(g.begin(), g.begin() + dim, 0.) == dim - 1)
+      {
+        step  = dim;
+        phase = std::find_if(g.begin(),
+                             g.end(),
+                             [](const double x) { return x != 0.; }) -
+                g.begin();
+      }
   }
 
 
@@ -321,7 +341,7 @@ namespace estep
     const unsigned int   n   = x.size();
     const CompensatedDot dot = sum_over_coordinate_blocks<CompensatedDot>(
       *this, [&](const unsigned int b) {
-        return CompensatedDot::of(w, x, block_range(b, n));
+        return CompensatedDot::of(w, x, block_range(b, n), step, phase);
       });
     if (magnitude != nullptr)
       *magnitude = dot.gross;

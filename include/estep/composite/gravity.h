@@ -118,6 +118,9 @@ namespace estep
   private:
     std::array<double, 3> g;
     Vector                w;
+    /** The coordinates whose weights may be nonzero: those that are phase
+     * modulo step (along one axis, dim and the axis; else all). */
+    unsigned int step = 1, phase = 0;
 
     /** w . @p x as compensated_dot() computes it, with sum_i |w_i x_i| into
      * @p magnitude if given; from the kept coordinates of @p x (collective)
