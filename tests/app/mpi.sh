@@ -136,9 +136,9 @@ same_on_ranks ida "$files/spinning_cube_ida_bdf.prm" --set "Elastic body/Mesh/Su
 same_on_ranks ida_one_block "$files/spinning_cube_ida_bdf.prm" \
   --set "Elastic body/Mesh/Subdivisions=3" --set "Time integration/End time=1" \
   --set "Postprocessors/List=history"
-# Explicit Newmark shares the state as energy-stepping does: each process keeps its part, and the
-# history's rows, the checkpoints (which hold the acceleration and the previous step too) and
-# field output complete it. The cube of 24,000 cells.
+# Explicit Newmark shares the state as energy-stepping does: each process keeps its part, which
+# the history's rows and the checkpoints (the acceleration and the previous step too) complete.
+# The cube of 24,000 cells.
 same_on_ranks newmark "$files/spinning_cube_newmark_0.0082.prm" \
   --set "Elastic body/Mesh/Subdivisions=10" --set "Time integration/End time=0.5" \
   --set "Postprocessors/List=history"
