@@ -158,16 +158,24 @@ namespace estep
       std::fill(read.begin() + block_range(blocks.begin, n).begin,
                 read.begin() + block_range(blocks.end - 1, n).end,
                 1);
-    std::vector<BlockRange> kept;
-    for (unsigned int i = 0; i < n; ++i)
-      if (read[i])
+    return flagged_ranges(read);
+  }
+
+
+
+  std::vector<BlockRange>
+  flagged_ranges(const std::vector<char> &flags)
+  {
+    std::vector<BlockRange> ranges;
+    for (unsigned int i = 0; i < flags.size(); ++i)
+      if (flags[i])
         {
-          if (!kept.empty() && kept.back().end == i && i % block_size != 0)
-            ++kept.back().end;
+          if (!ranges.empty() && ranges.back().end == i && i % block_size != 0)
+            ++ranges.back().end;
           else
-            kept.push_back({i, i + 1});
+            ranges.push_back({i, i + 1});
         }
-    return kept;
+    return ranges;
   }
 
 

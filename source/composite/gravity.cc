@@ -354,6 +354,7 @@ namespace estep
   Gravity::energy(const Vector &q) const
   {
     const double V = base_system->energy(q);
+    // Collective where the state is shared: every rank sums, whatever V.
     const double W = weighted_sum(q);
     if (!std::isfinite(V))
       return V;

@@ -126,16 +126,12 @@ namespace estep
           read[reduced_dofs[i]] = 1;
     // This rank's blocks of the free coordinates (rank_cells(): the items of
     // its blocks), and of the base's.
-    const BlockRange own = rank_cells(n, this_rank());
+    const BlockRange  own = rank_cells(n, this_rank());
+    std::vector<char> received(n, 0);
     for (unsigned int k = own.begin; k < own.end; ++k)
-      if (!read[k])
-        {
-          if (!shared.received.empty() && shared.received.back().end == k)
-            ++shared.received.back().end;
-          else
-            shared.received.push_back({k, k + 1});
-        }
-    shared.kept = kept_coordinate_ranges(std::move(read));
+      received[k] = !read[k];
+    shared.received = flagged_ranges(received);
+    shared.kept     = kept_coordinate_ranges(std::move(read));
     // The base keeps its own blocks of coordinates (MechanicalSystem::
     // kept_coordinates()), so the rank whose blocks hold a coordinate has
     // its gradient.

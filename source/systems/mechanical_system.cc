@@ -1,5 +1,7 @@
 #include <estep/systems/mechanical_system.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -122,5 +124,26 @@ namespace estep
     for (unsigned int i = 0; i < v.size(); ++i)
       t += v[i] * v[i] / inv_mass[i];
     return 0.5 * t;
+  }
+
+
+
+  bool
+  all_finite(const MechanicalSystem                     &system,
+             const std::initializer_list<const Vector *> vectors)
+  {
+    const unsigned int n = system.n_dofs();
+    return sum_over_coordinate_blocks<unsigned int>(
+             system, [&](const unsigned int b) {
+               const BlockRange dofs = block_range(b, n);
+               return unsigned(std::all_of(
+                 vectors.begin(), vectors.end(), [&](const Vector *x) {
+                   return std::all_of(x->begin() + dofs.begin,
+                                      x->begin() + dofs.end,
+                                      [](const double value) {
+                                        return std::isfinite(value);
+                                      });
+                 }));
+             }) == n_blocks(n);
   }
 } // namespace estep

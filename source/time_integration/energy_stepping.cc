@@ -307,15 +307,7 @@ namespace estep
     else
       departure = Departure::interior;
 
-    const unsigned int finite_blocks = sum_over_coordinate_blocks<unsigned int>(
-      system, [&](const unsigned int b) {
-        const BlockRange dofs = block_range(b, v.size());
-        return unsigned(
-          std::all_of(v.begin() + dofs.begin,
-                      v.begin() + dofs.end,
-                      [](const double x) { return std::isfinite(x); }));
-      });
-    if (finite_blocks < n_blocks(v.size()))
+    if (!all_finite(system, {&v}))
       {
         std::ostringstream message;
         message << "The velocity became non-finite at t = " << t << ".";

@@ -4,7 +4,6 @@
 #include <estep/time_integration/explicit_newmark.h>
 #include <estep/time_integration/integrator_registry.h>
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -86,17 +85,7 @@ namespace estep
       for (unsigned int i = kept.begin; i < kept.end; ++i)
         v[i] += 0.5 * tau * acceleration[i];
     });
-    const auto is_finite = [](const double x) { return std::isfinite(x); };
-    const bool finite    = sum_over_coordinate_blocks<unsigned int>(
-                          system, [&](const unsigned int b) {
-                            const BlockRange dofs = block_range(b, q.size());
-                            return unsigned(std::all_of(q.begin() + dofs.begin,
-                                                        q.begin() + dofs.end,
-                                                        is_finite) &&
-                                            std::all_of(v.begin() + dofs.begin,
-                                                        v.begin() + dofs.end,
-                                                        is_finite));
-                          }) == n_blocks(q.size());
+    const bool finite = all_finite(system, {&q, &v});
 
     t_previous = t;
     t          = (tau == remaining) ? t_limit : t + tau;

@@ -77,6 +77,11 @@ namespace estep
   std::vector<BlockRange>
   kept_coordinate_ranges(std::vector<char> read);
 
+  /** The items flagged in @p flags (one per item), as sorted disjoint ranges
+   * cut at the ends of blocks. */
+  std::vector<BlockRange>
+  flagged_ranges(const std::vector<char> &flags);
+
   /**
    * @p items holds @p n_blocks items of @p item_bytes bytes each, of which
    * this rank has written those of rank_blocks(n_blocks, this_rank()); on

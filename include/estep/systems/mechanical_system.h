@@ -7,6 +7,7 @@
 #include <estep/base/parallel_blocks.h>
 #include <estep/systems/free_flight.h>
 
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -259,6 +260,14 @@ namespace estep
              sum_over_distributed_blocks<T>(n_coordinate_blocks, term) :
              sum_over_blocks<T>(n_coordinate_blocks, term);
   }
+
+  /** Whether every coordinate of each of @p vectors (states of @p system)
+   * is finite, checked over the blocks of coordinates as
+   * sum_over_coordinate_blocks() takes them: collective, and from the kept
+   * coordinates alone where the system shares its state. */
+  bool
+  all_finite(const MechanicalSystem                     &system,
+             const std::initializer_list<const Vector *> vectors);
 } // namespace estep
 
 #endif
